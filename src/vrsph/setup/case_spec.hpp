@@ -1,0 +1,109 @@
+// The validated description of a run: what a case file (plus --set overrides) says, with every
+// default filled in. Built by parse_case() (case_parser.hpp); consumed by the solver set-up.
+// Vectors are stored with 3 components; only the first `dimension` are meaningful.
+// Key names follow ../shared/CONTRACT.md; defaults follow ../shared/PHYSICS.md.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vrsph {
+
+using Vec3d = std::array<double, 3>;
+
+enum class ViscosityModel { laminar, artificial };
+enum class DiffusionModel { none, molteni, fourtakas };
+enum class ShiftingModel { none, lind, skillen };
+enum class BlockShape { circle, sphere, box };
+enum class FillMode { lattice, rings };
+enum class WallShape { tank, box };
+
+struct FluidBlock {
+  BlockShape shape = BlockShape::box;
+  Vec3d center{};  // circle / sphere
+  double radius = 0.0;
+  Vec3d min{};  // box
+  Vec3d max{};
+  FillMode fill = FillMode::lattice;
+  Vec3d velocity{};  // initial velocity (m/s)
+};
+
+struct WallBlock {
+  WallShape shape = WallShape::tank;
+  Vec3d min{};
+  Vec3d max{};
+  int layers = 3;
+};
+
+struct RefinementBox {
+  Vec3d min{};
+  Vec3d max{};
+  int dp_ratio = 2;
+  double buffer_width = 4.0;  // in units of each level's own h
+};
+
+struct OutputLine {
+  std::string name;
+  Vec3d from{};
+  Vec3d to{};
+};
+
+struct CaseSpec {
+  // [case]
+  std::string name;
+  int dimension = 2;
+  double end_time = 0.0;
+
+  // [fluid]
+  double density = 1000.0;
+  double kinematic_viscosity = 1.0e-6;
+  double surface_tension = 0.0;
+  Vec3d gravity{};
+
+  // [eos]
+  double gamma = 7.0;
+  std::optional<double> max_speed;  // when absent: sqrt(|g| H) for gravity cases
+  double sound_speed_factor = 20.0;
+  std::optional<double> sound_speed;  // overrides the two above
+
+  // [resolution]
+  double dp = 0.0;
+  double h_over_dp = 1.3;
+
+  // [numerics]
+  double cfl = 0.2;
+  ViscosityModel viscosity = ViscosityModel::laminar;
+  double artificial_alpha = 0.01;
+  DiffusionModel density_diffusion = DiffusionModel::molteni;
+  double diffusion_delta = 0.1;
+  ShiftingModel shifting = ShiftingModel::none;
+  double shifting_coefficient = 0.05;  // lind default; skillen default is 2
+  double shifting_surface_threshold = 1.5;  // 2.75 in 3D by default
+  double lambda_threshold = 0.7;
+  double normal_epsilon = 0.1;
+  bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
+
+  // geometry
+  std::vector<FluidBlock> fluid_blocks;
+  std::vector<WallBlock> wall_blocks;
+
+  // [domain] (absent: bounding box of all particles + margin)
+  std::optional<Vec3d> domain_min;
+  std::optional<Vec3d> domain_max;
+  double max_lost_fraction = 0.01;  // run stops when more fluid than this has left the domain
+
+  std::vector<RefinementBox> refinements;
+
+  // [output]
+  double output_interval = 0.0;  // 0: only the initial and final snapshots
+  bool write_vtp = true;
+  bool write_csv = true;
+  std::vector<OutputLine> lines;
+
+  // [analysis]
+  std::optional<double> laplace_pressure;
+};
+
+}  // namespace vrsph
