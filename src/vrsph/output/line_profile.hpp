@@ -1,0 +1,47 @@
+// Pressure profile along a segment (the poster's diameter plot): the fluid and buffer particles
+// (walls excluded) within half_width of the segment from -> to, i.e. with perpendicular distance
+// <= half_width and projection s in [0, |to - from|], sorted by s (ties by particle id).
+// File columns: s,x,y[,z],p,level.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vrsph/particles/particles.hpp"
+
+namespace vrsph {
+
+template <int D>
+struct LineSample {
+  double s = 0.0;  // m, distance along the segment from `from`
+  Vec<D> x{};      // m
+  double p = 0.0;  // Pa
+  int level = 0;
+  std::uint64_t id = 0;
+};
+
+// The selected particles, sorted by s. `level` empty means all level 0. Throws
+// std::invalid_argument if from == to or `level` has the wrong size.
+template <int D>
+std::vector<LineSample<D>> sample_line(const ParticleSet<D>& ps,
+                                       std::span<const std::uint8_t> level, const Vec<D>& from,
+                                       const Vec<D>& to, double half_width);
+
+// Writes sample_line(...) as CSV, atomically. Callers pass half_width = dp / 2.
+template <int D>
+void write_line_profile(const std::filesystem::path& path, const ParticleSet<D>& ps,
+                        std::span<const std::uint8_t> level, const Vec<D>& from, const Vec<D>& to,
+                        double half_width);
+
+// Writes already selected samples (e.g. merged from several levels) as CSV, atomically.
+template <int D>
+void write_line_samples(const std::filesystem::path& path, std::span<const LineSample<D>> samples);
+
+// "line_diameter_0003.csv" for ("diameter", 3).
+std::string line_file_name(std::string_view name, int index);
+
+}  // namespace vrsph

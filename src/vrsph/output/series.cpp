@@ -1,0 +1,154 @@
+// series.csv writer and the per-step global diagnostics (see series.hpp).
+#include "vrsph/output/series.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "vrsph/output/atomic_file.hpp"
+
+namespace vrsph {
+
+template <int D>
+SeriesRow compute_series_row(const ParticleSet<D>& ps, double t, long step, double dt) {
+  SeriesRow row;
+  row.t = t;
+  row.step = step;
+  row.dt = dt;
+  double max_v2 = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.kind[i] == Kind::buffer) ++row.n_buffer;
+    if (ps.kind[i] != Kind::fluid) continue;
+    const double v2 = norm2(ps.vel[i]);
+    ++row.n_fluid;
+    row.mass_fluid += ps.mass[i];
+    row.kinetic_energy += 0.5 * ps.mass[i] * v2;
+    max_v2 = std::max(max_v2, v2);
+  }
+  row.max_speed = std::sqrt(max_v2);
+  return row;
+}
+
+template SeriesRow compute_series_row<2>(const ParticleSet<2>&, double, long, double);
+template SeriesRow compute_series_row<3>(const ParticleSet<3>&, double, long, double);
+
+void accumulate_series_row(SeriesRow& row, const SeriesRow& other) {
+  row.n_fluid += other.n_fluid;
+  row.n_buffer += other.n_buffer;
+  row.mass_fluid += other.mass_fluid;
+  row.kinetic_energy += other.kinetic_energy;
+  row.max_speed = std::max(row.max_speed, other.max_speed);
+}
+
+namespace {
+
+constexpr const char* kFixedHeader =
+    "t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed";
+
+std::vector<std::string> split(std::string_view line, char sep) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t k = 0; k <= line.size(); ++k) {
+    if (k == line.size() || line[k] == sep) {
+      parts.emplace_back(line.substr(start, k - start));
+      start = k + 1;
+    }
+  }
+  return parts;
+}
+
+// Extra column names from a header line; throws if the fixed part is not the expected one.
+std::vector<std::string> extras_from_header(const std::string& header,
+                                            const std::filesystem::path& path) {
+  const std::string fixed = kFixedHeader;
+  if (header.compare(0, fixed.size(), fixed) != 0 ||
+      (header.size() > fixed.size() && header[fixed.size()] != ','))
+    throw std::runtime_error(path.string() + ": not a series.csv header: " + header);
+  if (header.size() == fixed.size()) return {};
+  return split(std::string_view(header).substr(fixed.size() + 1), ',');
+}
+
+// True if `line` has `n_columns` fields and its t (first field) parses and is <= up_to_time.
+bool keep_row(const std::string& line, std::size_t n_columns, double up_to_time) {
+  if (split(line, ',').size() != n_columns) return false;
+  double t = 0.0;
+  const char* end = line.data() + line.find(',');
+  const auto [ptr, ec] = std::from_chars(line.data(), end, t);
+  return ec == std::errc() && ptr == end && t <= up_to_time;
+}
+
+// Appends `text` with one write() and fsyncs; throws with the path and errno text on failure.
+void append_durably(const std::filesystem::path& path, std::string_view text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  int err = fd < 0 ? errno : 0;
+  if (err == 0) {
+    const ssize_t n = ::write(fd, text.data(), text.size());
+    if (n < 0)
+      err = errno;
+    else if (static_cast<std::size_t>(n) != text.size())
+      err = EIO;
+    if (err == 0 && ::fsync(fd) != 0) err = errno;
+    ::close(fd);
+  }
+  if (err != 0)
+    throw std::runtime_error(
+        fmt::format("cannot append to '{}': {}", path.string(), std::strerror(err)));
+}
+
+}  // namespace
+
+SeriesWriter::SeriesWriter(NoInit, std::filesystem::path path,
+                           std::vector<std::string> extra_columns)
+    : path_(std::move(path)), extra_(std::move(extra_columns)) {}
+
+SeriesWriter::SeriesWriter(std::filesystem::path path, std::vector<std::string> extra_columns)
+    : SeriesWriter(NoInit{}, std::move(path), std::move(extra_columns)) {
+  write_file_atomic(path_, header() + "\n");
+}
+
+std::string SeriesWriter::header() const {
+  std::string h = kFixedHeader;
+  for (const std::string& c : extra_) h += "," + c;
+  return h;
+}
+
+SeriesWriter SeriesWriter::resume(const std::filesystem::path& path, double up_to_time,
+                                  std::vector<std::string> extra_columns) {
+  if (!std::filesystem::exists(path)) return SeriesWriter(path, std::move(extra_columns));
+  const std::string text = read_text_file(path);
+  // Only newline-terminated lines count: a trailing partial line is dropped.
+  std::vector<std::string> lines = split(text.substr(0, text.rfind('\n') + 1), '\n');
+  lines.pop_back();  // the empty piece after the last '\n'
+  if (lines.empty()) return SeriesWriter(path, std::move(extra_columns));
+  std::vector<std::string> extras = extras_from_header(lines[0], path);
+  if (!extra_columns.empty() && extra_columns != extras)
+    throw std::runtime_error(path.string() + ": extra columns differ from the resumed run's");
+  SeriesWriter w(NoInit{}, path, std::move(extras));
+  std::string kept = lines[0] + "\n";
+  const std::size_t n_columns = 8 + w.extra_.size();
+  for (std::size_t k = 1; k < lines.size(); ++k)
+    if (keep_row(lines[k], n_columns, up_to_time)) kept += lines[k] + "\n";
+  write_file_atomic(path, kept);
+  return w;
+}
+
+void SeriesWriter::append(const SeriesRow& row) {
+  if (row.extra.size() != extra_.size())
+    throw std::invalid_argument(fmt::format("series row has {} extra values for {} columns",
+                                            row.extra.size(), extra_.size()));
+  fmt::memory_buffer buf;
+  fmt::format_to(fmt::appender(buf), "{},{},{},{},{},{},{},{}", row.t, row.step, row.dt,
+                 row.n_fluid, row.n_buffer, row.mass_fluid, row.kinetic_energy, row.max_speed);
+  for (double v : row.extra) fmt::format_to(fmt::appender(buf), ",{}", v);
+  buf.push_back('\n');
+  append_durably(path_, std::string_view(buf.data(), buf.size()));
+}
+
+}  // namespace vrsph

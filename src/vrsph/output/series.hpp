@@ -1,0 +1,63 @@
+// series.csv: one row of global diagnostics per call (at least one per output time), columns
+//   t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed[,extra columns...]
+// Each row is appended with a single write() and fsync'ed, so a killed run leaves whole lines only;
+// resume() also drops any incomplete trailing line.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "vrsph/particles/particles.hpp"
+
+namespace vrsph {
+
+struct SeriesRow {
+  double t = 0.0;  // s
+  long step = 0;
+  double dt = 0.0;  // s
+  long n_fluid = 0;
+  long n_buffer = 0;
+  double mass_fluid = 0.0;      // kg, fluid particles of all levels, buffers excluded
+  double kinetic_energy = 0.0;  // J, sum 0.5 m |v|^2 over fluid
+  double max_speed = 0.0;       // m/s, max |v| over fluid
+  std::vector<double> extra;    // one value per extra column, in the writer's order
+};
+
+// The fixed columns of a row from one particle set, summed in index order (deterministic).
+// For several levels, combine rows with accumulate_series_row.
+template <int D>
+SeriesRow compute_series_row(const ParticleSet<D>& ps, double t, long step, double dt);
+
+// Adds the counts, masses and energies of `other` into `row` and takes the larger max_speed
+// (t, step, dt and extras of `row` are kept): the row of several levels.
+void accumulate_series_row(SeriesRow& row, const SeriesRow& other);
+
+class SeriesWriter {
+ public:
+  // Starts a new series.csv at `path` (replacing any existing one) with the header.
+  explicit SeriesWriter(std::filesystem::path path, std::vector<std::string> extra_columns = {});
+
+  // Continues an existing series after a restart from a checkpoint at `up_to_time`: keeps the
+  // header and the complete rows with t <= up_to_time, dropping later and broken rows (rewritten
+  // atomically). The extra columns come from the file's header; if `extra_columns` is not empty it
+  // must match them (std::runtime_error otherwise). A missing file starts a new series.
+  static SeriesWriter resume(const std::filesystem::path& path, double up_to_time,
+                             std::vector<std::string> extra_columns = {});
+
+  // Appends one row; row.extra must have one value per extra column (std::invalid_argument).
+  void append(const SeriesRow& row);
+
+  const std::filesystem::path& path() const { return path_; }
+  const std::vector<std::string>& extra_columns() const { return extra_; }
+  std::string header() const;
+
+ private:
+  struct NoInit {};
+  SeriesWriter(NoInit, std::filesystem::path path, std::vector<std::string> extra_columns);
+
+  std::filesystem::path path_;
+  std::vector<std::string> extra_;
+};
+
+}  // namespace vrsph

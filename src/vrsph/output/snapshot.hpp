@@ -1,0 +1,87 @@
+// Particle snapshots: VTK XML PolyData (.vtp) with a ParaView time-series collection (.pvd), and
+// plain CSV. Extra per-particle fields can be appended as further arrays/columns without touching
+// the writers. Column and array names follow ../shared/CONTRACT.md ("Output folder").
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vrsph/particles/particles.hpp"
+
+namespace vrsph {
+
+// One extra per-particle field: values are particle-major, values[i * components + c].
+// In the CSV a 1-component field is one column `name`; 2 or 3 components become
+// `name_x,name_y[,name_z]`, more become `name_0,name_1,...`. In the .vtp it is one array
+// (a 2-component field in 2D is padded with z = 0 so ParaView treats it as a vector).
+struct ExtraField {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;  // size() == n * components
+};
+
+// `level` gives the resolution level of each particle; empty means all level 0.
+// Both writers are atomic (temp file + rename) and throw std::runtime_error on I/O failure and
+// std::invalid_argument when an extra field or `level` has the wrong size.
+
+// VTK XML PolyData, appended raw binary (Float64 / UInt64 / UInt8 / Int64): Points (x, y, z; z = 0
+// in 2D), one vertex per particle, PointData id, level, kind (0 fluid, 1 wall, 2 buffer),
+// velocity (3 components), rho, p, mass, then the extras.
+template <int D>
+void write_vtp(const std::filesystem::path& path, const ParticleSet<D>& ps,
+               std::span<const ExtraField> extras, std::span<const std::uint8_t> level);
+
+// CSV with header id,level,kind,x,y[,z],vx,vy[,vz],rho,p,mass[,extras...]; kind as a word;
+// numbers in shortest round-trip form.
+template <int D>
+void write_particles_csv(const std::filesystem::path& path, const ParticleSet<D>& ps,
+                         std::span<const ExtraField> extras, std::span<const std::uint8_t> level);
+
+// "particles_0007.vtp" for (7, "vtp"): the snapshot file name of output number `index`.
+std::string snapshot_file_name(int index, std::string_view extension);
+
+// Several resolution levels gathered into one set for a snapshot (all levels go into the same
+// file): positions, velocities, rho, p, mass, id and kind are copied level after level, and
+// `level[i]` is the index of the level particle i came from.
+template <int D>
+struct MergedLevels {
+  ParticleSet<D> particles;
+  std::vector<std::uint8_t> level;
+};
+template <int D>
+MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels);
+
+// The .pvd collection listing the snapshots with their times (seconds), kept in time order.
+class PvdCollection {
+ public:
+  struct Entry {
+    double time = 0.0;
+    std::string file;  // relative to the .pvd's directory
+  };
+
+  explicit PvdCollection(std::filesystem::path pvd_path);
+
+  // Reads the entries of an existing .pvd (for a resumed run), keeping those with
+  // time <= up_to_time; a missing file gives an empty collection.
+  static PvdCollection load(const std::filesystem::path& pvd_path,
+                            double up_to_time = std::numeric_limits<double>::infinity());
+
+  // Adds a snapshot; an entry with the same file name is replaced. Entries stay sorted by time.
+  void add(double time, const std::string& vtp_file_name);
+  // Rewrites the .pvd atomically.
+  void write() const;
+
+  const std::vector<Entry>& entries() const { return entries_; }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace vrsph
