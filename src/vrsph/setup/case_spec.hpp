@@ -28,6 +28,8 @@ struct FluidBlock {
   Vec3d max{};
   FillMode fill = FillMode::lattice;
   Vec3d velocity{};  // initial velocity (m/s)
+
+  bool operator==(const FluidBlock&) const = default;
 };
 
 struct WallBlock {
@@ -35,6 +37,8 @@ struct WallBlock {
   Vec3d min{};
   Vec3d max{};
   int layers = 3;
+
+  bool operator==(const WallBlock&) const = default;
 };
 
 struct RefinementBox {
@@ -42,12 +46,16 @@ struct RefinementBox {
   Vec3d max{};
   int dp_ratio = 2;
   double buffer_width = 4.0;  // in units of each level's own h
+
+  bool operator==(const RefinementBox&) const = default;
 };
 
 struct OutputLine {
   std::string name;
   Vec3d from{};
   Vec3d to{};
+
+  bool operator==(const OutputLine&) const = default;
 };
 
 struct CaseSpec {
@@ -79,7 +87,7 @@ struct CaseSpec {
   DiffusionModel density_diffusion = DiffusionModel::molteni;
   double diffusion_delta = 0.1;
   ShiftingModel shifting = ShiftingModel::none;
-  double shifting_coefficient = 0.05;  // lind default; skillen default is 2
+  double shifting_coefficient = 0.05;       // lind default; skillen default is 2
   double shifting_surface_threshold = 1.5;  // 2.75 in 3D by default
   double lambda_threshold = 0.7;
   double normal_epsilon = 0.1;
@@ -104,6 +112,8 @@ struct CaseSpec {
 
   // [analysis]
   std::optional<double> laplace_pressure;
+
+  bool operator==(const CaseSpec&) const = default;
 };
 
 }  // namespace vrsph

@@ -1,0 +1,264 @@
+// parse_case(): the case-file schema, one function per table, with defaults (PHYSICS.md) and
+// validation (CONTRACT.md). Reading and error formatting are in case_reader.cpp.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <set>
+
+#include "vrsph/setup/case_parser.hpp"
+#include "vrsph/setup/case_reader.hpp"
+
+namespace vrsph {
+namespace {
+
+using namespace case_detail;
+
+// The allowed keys of every table (the schema); anything else is an "unknown key" error.
+constexpr std::string_view kRootKeys[] = {"case",       "fluid",       "eos",        "resolution",
+                                          "numerics",   "fluid_block", "wall_block", "domain",
+                                          "refinement", "output",      "analysis"};
+constexpr std::string_view kCaseKeys[] = {"name", "dimension", "end_time"};
+constexpr std::string_view kFluidKeys[] = {"density", "kinematic_viscosity", "surface_tension",
+                                           "gravity"};
+constexpr std::string_view kEosKeys[] = {"gamma", "max_speed", "sound_speed_factor", "sound_speed"};
+constexpr std::string_view kResolutionKeys[] = {"dp", "h_over_dp"};
+constexpr std::string_view kNumericsKeys[] = {
+    "cfl",      "viscosity",       "density_diffusion",
+    "shifting", "surface_tension", "hydrostatic_initial_density"};
+constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
+constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
+constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
+constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon"};
+constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",  "min",
+                                                "max",   "fill",   "velocity"};
+constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
+constexpr std::string_view kDomainKeys[] = {"min", "max", "max_lost_fraction"};
+constexpr std::string_view kRefinementKeys[] = {"min", "max", "dp_ratio", "buffer_width"};
+constexpr std::string_view kOutputKeys[] = {"interval", "formats", "line"};
+constexpr std::string_view kLineKeys[] = {"name", "from", "to"};
+constexpr std::string_view kAnalysisKeys[] = {"laplace_pressure"};
+
+// "[a, b]" or "[a, b, c]": the first dim components, for messages.
+std::string vec_text(const Vec3d& v, int dim) {
+  std::string out = "[";
+  for (int k = 0; k < dim; ++k) out += fmt::format("{}{}", k ? ", " : "", v[k]);
+  return out + "]";
+}
+
+// True when a[k] < b[k] for every k < dim.
+bool all_less(const Vec3d& a, const Vec3d& b, int dim) {
+  for (int k = 0; k < dim; ++k) {
+    if (!(a[k] < b[k])) return false;
+  }
+  return true;
+}
+
+// A case name usable as a folder name: non-empty, no path separators or control characters.
+bool valid_case_name(const std::string& name) {
+  if (name.empty() || name == "." || name == "..") return false;
+  return std::none_of(name.begin(), name.end(), [](char c) {
+    return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20;
+  });
+}
+
+// A safe file-name fragment: [A-Za-z0-9_-]+.
+bool valid_file_fragment(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-';
+  });
+}
+
+// Required min and max vectors with min < max in every component.
+void read_box(const TableReader& r, int dim, Vec3d& min, Vec3d& max) {
+  min = r.req("min", r.opt_vector("min", dim));
+  max = r.req("max", r.opt_vector("max", dim));
+  r.require("max", all_less(min, max, dim),
+            fmt::format("must be > min = {} in every component", vec_text(min, dim)));
+}
+
+// [case]: name, dimension, end_time (all required).
+void parse_case_table(const TableReader& r, CaseSpec& spec) {
+  spec.name = r.req("name", r.opt_string("name"));
+  r.require("name", valid_case_name(spec.name),
+            "must be a non-empty folder name (no '/', '\\', control characters, '.' or '..')");
+  spec.dimension = r.req("dimension", r.opt_integer("dimension"));
+  r.require("dimension", spec.dimension == 2 || spec.dimension == 3, "must be 2 or 3");
+  spec.end_time = r.req("end_time", r.opt_number("end_time", kPositive));
+}
+
+// [resolution] and [fluid].
+void parse_resolution_and_fluid(const TableReader& res, const TableReader& fl, CaseSpec& spec) {
+  spec.dp = res.req("dp", res.opt_number("dp", kPositive));
+  spec.h_over_dp = res.opt_number("h_over_dp", kPositive).value_or(spec.h_over_dp);
+  spec.density = fl.opt_number("density", kPositive).value_or(spec.density);
+  spec.kinematic_viscosity =
+      fl.opt_number("kinematic_viscosity", kNonNegative).value_or(spec.kinematic_viscosity);
+  spec.surface_tension =
+      fl.opt_number("surface_tension", kNonNegative).value_or(spec.surface_tension);
+  spec.gravity = fl.opt_vector("gravity", spec.dimension).value_or(Vec3d{});
+}
+
+// [eos]: gamma, max_speed (optional), sound_speed_factor, sound_speed (optional).
+void parse_eos(const TableReader& r, CaseSpec& spec) {
+  spec.gamma = r.opt_number("gamma", kPositive).value_or(spec.gamma);
+  spec.max_speed = r.opt_number("max_speed", kPositive);
+  spec.sound_speed_factor =
+      r.opt_number("sound_speed_factor", kPositive).value_or(spec.sound_speed_factor);
+  spec.sound_speed = r.opt_number("sound_speed", kPositive);
+}
+
+// numerics.shifting: model (default none), coefficient (0.05 lind / 2 skillen),
+// surface_threshold (1.5 in 2D, 2.75 in 3D; must lie in [0, dimension)).
+void parse_shifting(const TableReader& r, CaseSpec& spec) {
+  spec.shifting = r.opt_enum("model", kShiftingNames).value_or(spec.shifting);
+  const double coefficient = spec.shifting == ShiftingModel::skillen ? 2.0 : 0.05;
+  spec.shifting_coefficient = r.opt_number("coefficient", kNonNegative).value_or(coefficient);
+  const double threshold = spec.dimension == 2 ? 1.5 : 2.75;
+  spec.shifting_surface_threshold =
+      r.opt_number("surface_threshold", kNonNegative).value_or(threshold);
+  r.require("surface_threshold", spec.shifting_surface_threshold < spec.dimension,
+            fmt::format("must be < dimension ({})", spec.dimension));
+}
+
+// [numerics]: cfl and the model choices (inline tables).
+void parse_numerics(const TableReader& r, CaseSpec& spec) {
+  spec.cfl = r.opt_number("cfl", kUnitHalfOpen).value_or(spec.cfl);
+  const auto visc = r.sub_table("viscosity", kViscosityKeys);
+  spec.viscosity = visc.opt_enum("model", kViscosityNames).value_or(spec.viscosity);
+  spec.artificial_alpha = visc.opt_number("alpha", kNonNegative).value_or(spec.artificial_alpha);
+  const auto diff = r.sub_table("density_diffusion", kDiffusionKeys);
+  spec.density_diffusion = diff.opt_enum("model", kDiffusionNames).value_or(spec.density_diffusion);
+  spec.diffusion_delta = diff.opt_number("delta", kNonNegative).value_or(spec.diffusion_delta);
+  parse_shifting(r.sub_table("shifting", kShiftingKeys), spec);
+  const auto st = r.sub_table("surface_tension", kSurfaceTensionKeys);
+  spec.lambda_threshold =
+      st.opt_number("lambda_threshold", kUnitClosed).value_or(spec.lambda_threshold);
+  spec.normal_epsilon = st.opt_number("normal_epsilon", kNonNegative).value_or(spec.normal_epsilon);
+  spec.hydrostatic_initial_density =
+      r.opt_bool("hydrostatic_initial_density").value_or(spec.hydrostatic_initial_density);
+}
+
+// One [[fluid_block]]: circle/sphere (center, radius >= dp) or box (min, max).
+FluidBlock parse_fluid_block(const TableReader& r, const CaseSpec& spec) {
+  const int dim = spec.dimension;
+  FluidBlock b;
+  b.shape = r.req("shape", r.opt_enum("shape", kBlockShapeNames));
+  if (b.shape == BlockShape::box) {
+    r.forbid("center", "not used with shape = \"box\" (give min and max)");
+    r.forbid("radius", "not used with shape = \"box\" (give min and max)");
+    read_box(r, dim, b.min, b.max);
+  } else {
+    r.require("shape", (b.shape == BlockShape::circle) == (dim == 2),
+              dim == 2 ? "a 2D case uses \"circle\" (or \"box\")"
+                       : "a 3D case uses \"sphere\" (or \"box\")");
+    r.forbid("min", "not used with a round shape (give center and radius)");
+    r.forbid("max", "not used with a round shape (give center and radius)");
+    b.center = r.req("center", r.opt_vector("center", dim));
+    b.radius = r.req("radius", r.opt_number("radius", kPositive));
+    r.require("radius", b.radius >= spec.dp, fmt::format("must be >= resolution.dp ({})", spec.dp));
+  }
+  b.fill = r.opt_enum("fill", kFillNames).value_or(b.fill);
+  r.require("fill", b.fill != FillMode::rings || b.shape == BlockShape::circle,
+            "\"rings\" needs shape = \"circle\" (2D only)");
+  b.velocity = r.opt_vector("velocity", dim).value_or(Vec3d{});
+  return b;
+}
+
+// One [[wall_block]]: shape (tank | box), min, max, layers >= 1.
+WallBlock parse_wall_block(const TableReader& r, const CaseSpec& spec) {
+  WallBlock w;
+  w.shape = r.req("shape", r.opt_enum("shape", kWallShapeNames));
+  read_box(r, spec.dimension, w.min, w.max);
+  w.layers = r.opt_integer("layers").value_or(w.layers);
+  r.require("layers", w.layers >= 1, "must be >= 1");
+  return w;
+}
+
+// [domain]: min and max together (or neither), max_lost_fraction in [0, 1].
+void parse_domain(const TableReader& r, CaseSpec& spec) {
+  if (r.has("min") || r.has("max")) {
+    Vec3d min{}, max{};
+    if (!r.has("max")) r.fail("max", "required when domain.min is given");
+    if (!r.has("min")) r.fail("min", "required when domain.max is given");
+    read_box(r, spec.dimension, min, max);
+    spec.domain_min = min;
+    spec.domain_max = max;
+  }
+  spec.max_lost_fraction =
+      r.opt_number("max_lost_fraction", kUnitClosed).value_or(spec.max_lost_fraction);
+}
+
+// One [[refinement]]: box inside the domain (when given), dp_ratio >= 2, buffer_width > 0.
+RefinementBox parse_refinement(const TableReader& r, const CaseSpec& spec) {
+  const int dim = spec.dimension;
+  RefinementBox b;
+  read_box(r, dim, b.min, b.max);
+  if (spec.domain_min && spec.domain_max) {
+    const std::string reason =
+        fmt::format("refinement box must lie inside the domain (domain.min = {}, domain.max = {})",
+                    vec_text(*spec.domain_min, dim), vec_text(*spec.domain_max, dim));
+    for (int k = 0; k < dim; ++k) {
+      r.require("min", b.min[k] >= (*spec.domain_min)[k], reason);
+      r.require("max", b.max[k] <= (*spec.domain_max)[k], reason);
+    }
+  }
+  b.dp_ratio = r.opt_integer("dp_ratio").value_or(b.dp_ratio);
+  r.require("dp_ratio", b.dp_ratio >= 2, "must be >= 2");
+  b.buffer_width = r.opt_number("buffer_width", kPositive).value_or(b.buffer_width);
+  return b;
+}
+
+// [output]: interval >= 0, formats from {"vtp", "csv"}, [[output.line]] segments.
+void parse_output(const TableReader& r, CaseSpec& spec) {
+  spec.output_interval = r.opt_number("interval", kNonNegative).value_or(spec.output_interval);
+  if (const auto formats = r.opt_string_array("formats")) {
+    spec.write_vtp = spec.write_csv = false;
+    for (const auto& f : *formats) {
+      r.require("formats", f == "vtp" || f == "csv", "formats must be \"vtp\" or \"csv\"");
+      (f == "vtp" ? spec.write_vtp : spec.write_csv) = true;
+    }
+  }
+  std::set<std::string> names;
+  for (const auto& lr : r.table_array("line", kLineKeys)) {
+    OutputLine line;
+    line.name = lr.req("name", lr.opt_string("name"));
+    lr.require("name", valid_file_fragment(line.name), "must match [A-Za-z0-9_-]+");
+    lr.require("name", names.insert(line.name).second, "duplicate line name");
+    line.from = lr.req("from", lr.opt_vector("from", spec.dimension));
+    line.to = lr.req("to", lr.opt_vector("to", spec.dimension));
+    lr.require("to", line.to != line.from, "must differ from `from` (zero-length line)");
+    spec.lines.push_back(line);
+  }
+}
+
+}  // namespace
+
+// Validates the whole case table; see case_parser.hpp.
+CaseSpec parse_case(const toml::table& tbl, const std::string& source_name) {
+  const TableReader root(&tbl, "", source_name, kRootKeys);
+  CaseSpec spec;
+  parse_case_table(root.sub_table("case", kCaseKeys), spec);
+  parse_resolution_and_fluid(root.sub_table("resolution", kResolutionKeys),
+                             root.sub_table("fluid", kFluidKeys), spec);
+  parse_eos(root.sub_table("eos", kEosKeys), spec);
+  parse_numerics(root.sub_table("numerics", kNumericsKeys), spec);
+  for (const auto& r : root.table_array("fluid_block", kFluidBlockKeys)) {
+    spec.fluid_blocks.push_back(parse_fluid_block(r, spec));
+  }
+  root.require("fluid_block", !spec.fluid_blocks.empty(),
+               "at least one [[fluid_block]] is required");
+  for (const auto& r : root.table_array("wall_block", kWallBlockKeys)) {
+    spec.wall_blocks.push_back(parse_wall_block(r, spec));
+  }
+  parse_domain(root.sub_table("domain", kDomainKeys), spec);
+  for (const auto& r : root.table_array("refinement", kRefinementKeys)) {
+    spec.refinements.push_back(parse_refinement(r, spec));
+  }
+  parse_output(root.sub_table("output", kOutputKeys), spec);
+  spec.laplace_pressure =
+      root.sub_table("analysis", kAnalysisKeys).opt_number("laplace_pressure", kPositive);
+  return spec;
+}
+
+}  // namespace vrsph

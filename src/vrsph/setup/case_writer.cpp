@@ -1,0 +1,178 @@
+// case_to_toml(): the resolved case written back as TOML with every default filled in, in the
+// layout of CONTRACT.md. parse_case() of the result gives back an equal CaseSpec (numbers are
+// written in their shortest exact round-trip form).
+#include <fmt/format.h>
+
+#include "vrsph/setup/case_parser.hpp"
+#include "vrsph/setup/case_reader.hpp"
+
+namespace vrsph {
+namespace {
+
+using namespace case_detail;
+
+constexpr std::size_t kCommentColumn = 40;  // comments start here when the line is shorter
+
+// A double as a TOML float: shortest round-trip digits, always with '.' or an exponent.
+std::string num(double v) {
+  std::string s = fmt::format("{}", v);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+// First dim components as a TOML array of floats.
+std::string vec(const Vec3d& v, int dim) {
+  std::string out = "[";
+  for (int k = 0; k < dim; ++k) out += (k ? ", " : "") + num(v[k]);
+  return out + "]";
+}
+
+// Accumulates "key = value  # comment" lines.
+struct Writer {
+  std::string out;
+
+  // One key/value line, with an optional comment aligned to kCommentColumn.
+  void kv(std::string_view key, const std::string& value, std::string_view comment = {}) {
+    std::string line = fmt::format("{} = {}", key, value);
+    if (!comment.empty()) {
+      line.resize(std::max(line.size() + 2, kCommentColumn), ' ');
+      line += fmt::format("# {}", comment);
+    }
+    out += line + "\n";
+  }
+  // A table header ("[name]" or "[[name]]") preceded by a blank line.
+  void header(std::string_view text) { out += fmt::format("\n{}\n", text); }
+  void comment(std::string_view text) { out += fmt::format("# {}\n", text); }
+};
+
+// [case], [fluid], [eos], [resolution].
+void write_physics(Writer& w, const CaseSpec& s) {
+  const int dim = s.dimension;
+  w.header("[case]");
+  w.kv("name", toml_quote(s.name));
+  w.kv("dimension", fmt::format("{}", dim));
+  w.kv("end_time", num(s.end_time), "s");
+  w.header("[fluid]");
+  w.kv("density", num(s.density), "kg/m^3");
+  w.kv("kinematic_viscosity", num(s.kinematic_viscosity), "m^2/s");
+  w.kv("surface_tension", num(s.surface_tension), "N/m");
+  w.kv("gravity", vec(s.gravity, dim), "m/s^2");
+  w.header("[eos]");
+  w.kv("gamma", num(s.gamma));
+  if (s.max_speed) {
+    w.kv("max_speed", num(*s.max_speed), "m/s");
+  } else {
+    w.comment("max_speed: not set (sqrt(g H) for gravity cases)");
+  }
+  w.kv("sound_speed_factor", num(s.sound_speed_factor), "c0 = factor * max_speed");
+  if (s.sound_speed) {
+    w.kv("sound_speed", num(*s.sound_speed), "m/s, overrides the two above");
+  } else {
+    w.comment("sound_speed: not set");
+  }
+  w.header("[resolution]");
+  w.kv("dp", num(s.dp), "m, spacing of level 0");
+  w.kv("h_over_dp", num(s.h_over_dp));
+}
+
+// [numerics] with its inline model tables.
+void write_numerics(Writer& w, const CaseSpec& s) {
+  w.header("[numerics]");
+  w.kv("cfl", num(s.cfl));
+  w.kv("viscosity",
+       fmt::format("{{ model = {}, alpha = {} }}",
+                   toml_quote(enum_name(kViscosityNames, s.viscosity)), num(s.artificial_alpha)),
+       "alpha: artificial only");
+  w.kv("density_diffusion", fmt::format("{{ model = {}, delta = {} }}",
+                                        toml_quote(enum_name(kDiffusionNames, s.density_diffusion)),
+                                        num(s.diffusion_delta)));
+  w.kv("shifting", fmt::format("{{ model = {}, coefficient = {}, surface_threshold = {} }}",
+                               toml_quote(enum_name(kShiftingNames, s.shifting)),
+                               num(s.shifting_coefficient), num(s.shifting_surface_threshold)));
+  w.kv("surface_tension", fmt::format("{{ lambda_threshold = {}, normal_epsilon = {} }}",
+                                      num(s.lambda_threshold), num(s.normal_epsilon)));
+  w.kv("hydrostatic_initial_density", s.hydrostatic_initial_density ? "true" : "false");
+}
+
+// [[fluid_block]] and [[wall_block]].
+void write_blocks(Writer& w, const CaseSpec& s) {
+  const int dim = s.dimension;
+  for (const auto& b : s.fluid_blocks) {
+    w.header("[[fluid_block]]");
+    w.kv("shape", toml_quote(enum_name(kBlockShapeNames, b.shape)));
+    if (b.shape == BlockShape::box) {
+      w.kv("min", vec(b.min, dim), "m");
+      w.kv("max", vec(b.max, dim), "m");
+    } else {
+      w.kv("center", vec(b.center, dim), "m");
+      w.kv("radius", num(b.radius), "m");
+    }
+    w.kv("fill", toml_quote(enum_name(kFillNames, b.fill)));
+    w.kv("velocity", vec(b.velocity, dim), "m/s");
+  }
+  for (const auto& b : s.wall_blocks) {
+    w.header("[[wall_block]]");
+    w.kv("shape", toml_quote(enum_name(kWallShapeNames, b.shape)));
+    w.kv("min", vec(b.min, dim), "m");
+    w.kv("max", vec(b.max, dim), "m");
+    w.kv("layers", fmt::format("{}", b.layers));
+  }
+}
+
+// [domain] and [[refinement]].
+void write_domain(Writer& w, const CaseSpec& s) {
+  const int dim = s.dimension;
+  w.header("[domain]");
+  if (s.domain_min && s.domain_max) {
+    w.kv("min", vec(*s.domain_min, dim), "m");
+    w.kv("max", vec(*s.domain_max, dim), "m");
+  } else {
+    w.comment("min, max: not set (bounding box of all particles + margin)");
+  }
+  w.kv("max_lost_fraction", num(s.max_lost_fraction));
+  for (const auto& r : s.refinements) {
+    w.header("[[refinement]]");
+    w.kv("min", vec(r.min, dim), "m");
+    w.kv("max", vec(r.max, dim), "m");
+    w.kv("dp_ratio", fmt::format("{}", r.dp_ratio));
+    w.kv("buffer_width", num(r.buffer_width), "in units of each level's h");
+  }
+}
+
+// [output], [[output.line]] and [analysis].
+void write_output(Writer& w, const CaseSpec& s) {
+  w.header("[output]");
+  w.kv("interval", num(s.output_interval), "s; 0 = first and last snapshot only");
+  std::string formats;
+  if (s.write_vtp) formats += "\"vtp\"";
+  if (s.write_csv) formats += std::string(formats.empty() ? "" : ", ") + "\"csv\"";
+  w.kv("formats", "[" + formats + "]");
+  for (const auto& line : s.lines) {
+    w.header("[[output.line]]");
+    w.kv("name", toml_quote(line.name));
+    w.kv("from", vec(line.from, s.dimension), "m");
+    w.kv("to", vec(line.to, s.dimension), "m");
+  }
+  w.header("[analysis]");
+  if (s.laplace_pressure) {
+    w.kv("laplace_pressure", num(*s.laplace_pressure), "Pa");
+  } else {
+    w.comment("laplace_pressure: not set");
+  }
+}
+
+}  // namespace
+
+// The resolved case as TOML; see case_parser.hpp.
+std::string case_to_toml(const CaseSpec& spec) {
+  Writer w;
+  w.comment("vrsph case as resolved: every default filled in, --set overrides applied.");
+  write_physics(w, spec);
+  write_numerics(w, spec);
+  write_blocks(w, spec);
+  write_domain(w, spec);
+  write_output(w, spec);
+  return w.out;
+}
+
+}  // namespace vrsph
