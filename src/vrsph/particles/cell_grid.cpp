@@ -1,0 +1,109 @@
+#include "vrsph/particles/cell_grid.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace vrsph {
+
+template <int D>
+CellGrid<D>::CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double support,
+                      int cells_per_support)
+    : min_(domain_min), max_(domain_max), reach_(cells_per_support) {
+  cell_size_ = support / cells_per_support;
+  inv_cell_ = 1.0 / cell_size_;
+  ncell_total_ = 1;
+  for (int k = 0; k < D; ++k) {
+    const double extent = max_[k] - min_[k];
+    if (!(extent > 0.0)) throw std::invalid_argument("cell grid: empty domain");
+    n_[k] = static_cast<std::int64_t>(std::ceil(extent * inv_cell_)) + 2 * reach_ + 1;
+    ncell_total_ *= n_[k];
+  }
+  if (ncell_total_ > (std::int64_t{1} << 31)) {
+    throw std::invalid_argument("cell grid: domain too large for its cell size (over 2^31 cells)");
+  }
+  stride_ = {1, n_[0], n_[0] * n_[1]};
+  begin_.assign(2 * static_cast<std::size_t>(ncell_total_) + 1, 0);
+}
+
+template <int D>
+bool CellGrid<D>::inside(const Vec<D>& x) const {
+  for (int k = 0; k < D; ++k) {
+    if (!(x[k] >= min_[k] && x[k] <= max_[k])) return false;  // NaN counts as outside
+  }
+  return true;
+}
+
+template <int D>
+std::int64_t CellGrid<D>::cell_of(const Vec<D>& x) const {
+  std::int64_t c = 0;
+  for (int k = 0; k < D; ++k) {
+    const auto ck = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_) + reach_;
+    c += ck * stride_[k];
+  }
+  return c;
+}
+
+namespace {
+template <class T>
+void permute(std::vector<T>& a, const std::vector<std::uint32_t>& perm, std::vector<T>& scratch) {
+  scratch.resize(perm.size());
+  const auto n = static_cast<std::int64_t>(perm.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) scratch[i] = a[perm[i]];
+  a.swap(scratch);
+}
+}  // namespace
+
+template <int D>
+std::size_t CellGrid<D>::key(std::int64_t cell, Kind k) const {
+  return static_cast<std::size_t>(cell + static_cast<std::int64_t>(group_of(k)) * ncell_total_);
+}
+
+template <int D>
+std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
+  const std::size_t n = ps.size();
+  std::vector<std::uint64_t> lost;
+  pcell_.resize(n);
+  std::fill(begin_.begin(), begin_.end(), 0u);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!inside(ps.pos[i])) {
+      lost.push_back(ps.id[i]);
+      pcell_[i] = -1;
+      continue;
+    }
+    pcell_[i] = cell_of(ps.pos[i]);
+    ++begin_[key(pcell_[i], ps.kind[i])];
+    ++kept;
+  }
+  // Inclusive prefix sum: begin_[k] = end of key k; the reverse scatter below walks it back to
+  // the start of key k, keeping particles of a cell in their previous relative order (stable).
+  for (std::size_t k = 1; k < begin_.size(); ++k) begin_[k] += begin_[k - 1];
+  perm_.resize(kept);
+  for (std::size_t i = n; i-- > 0;) {
+    if (pcell_[i] < 0) continue;
+    perm_[--begin_[key(pcell_[i], ps.kind[i])]] = static_cast<std::uint32_t>(i);
+  }
+  permute(ps.id, perm_, id_scratch_);
+  permute(ps.kind, perm_, kind_scratch_);
+  // The scratch buffers are members: after each swap they hold the previous array's storage, so
+  // sorting allocates nothing once the sizes have settled.
+  permute(ps.pos, perm_, vec_scratch_);
+  permute(ps.vel, perm_, vec_scratch_);
+  permute(ps.pos0, perm_, vec_scratch_);
+  permute(ps.vel0, perm_, vec_scratch_);
+  permute(ps.rho, perm_, dbl_scratch_);
+  permute(ps.mass, perm_, dbl_scratch_);
+  permute(ps.rho0, perm_, dbl_scratch_);
+  permute(pcell_, perm_, cell_scratch_);
+  // Derived fields (p, acc, drho) are recomputed after every sort: only resize them.
+  ps.p.resize(kept);
+  ps.acc.resize(kept);
+  ps.drho.resize(kept);
+  return lost;
+}
+
+template class CellGrid<2>;
+template class CellGrid<3>;
+
+}  // namespace vrsph

@@ -1,0 +1,91 @@
+// Uniform cell grid for neighbour search, DualSPHysics style: particles are counting-sorted by
+// cell (x fastest, then y, then z) and every particle array is permuted together, so the
+// neighbours of a particle lie in 2*reach+1 contiguous runs (one per row of cells) in 2D and
+// (2*reach+1)^2 in 3D. The grid carries `reach` ghost cells on every side so stencils never
+// need clipping. Cell size = 2h / cells_per_support (1: "full" cells, 2: "half" cells).
+// Wall particles are sorted into a block of their own after the fluid (and buffer) block, as
+// DualSPHysics does, so a pass can visit fluid and wall neighbours separately without a test
+// per pair: for_each_run(c, Group::fluid, fn) and for_each_run(c, Group::wall, fn).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "vrsph/core/vec.hpp"
+#include "vrsph/particles/particles.hpp"
+
+namespace vrsph {
+
+enum class Group : int { fluid = 0, wall = 1 };  // fluid group includes buffer particles
+
+inline Group group_of(Kind k) { return k == Kind::wall ? Group::wall : Group::fluid; }
+
+template <int D>
+class CellGrid {
+ public:
+  CellGrid() = default;
+  // domain_min/max bound the region particles may occupy; support = 2h.
+  CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double support,
+           int cells_per_support);
+
+  bool inside(const Vec<D>& x) const;
+  std::int64_t cell_of(const Vec<D>& x) const;  // linear index; x must be inside
+
+  // Sorts all particle arrays by cell (stable), after deleting particles outside the domain.
+  // Returns the ids of the deleted particles.
+  std::vector<std::uint64_t> sort(ParticleSet<D>& ps);
+
+  // Calls fn(begin, end) for each contiguous run of particles of group g in the stencil around
+  // cell c (c from particle_cells(), i.e. without the group offset).
+  template <class Fn>
+  void for_each_run(std::int64_t c, Group g, Fn&& fn) const {
+    c += static_cast<std::int64_t>(g) * ncell_total_;
+    if constexpr (D == 2) {
+      for (int dy = -reach_; dy <= reach_; ++dy) {
+        const std::int64_t row = c + dy * stride_[1];
+        fn(begin_[row - reach_], begin_[row + reach_ + 1]);
+      }
+    } else {
+      for (int dz = -reach_; dz <= reach_; ++dz) {
+        for (int dy = -reach_; dy <= reach_; ++dy) {
+          const std::int64_t row = c + dy * stride_[1] + dz * stride_[2];
+          fn(begin_[row - reach_], begin_[row + reach_ + 1]);
+        }
+      }
+    }
+  }
+
+  // Cell of each particle after the last sort (same order as the particle arrays).
+  const std::vector<std::int64_t>& particle_cells() const { return pcell_; }
+  std::int64_t cell_count() const { return ncell_total_; }
+  // Index range of group g after the last sort: fluid first, then walls.
+  std::uint32_t group_begin(Group g) const { return begin_[static_cast<std::size_t>(g) * ncell_total_]; }
+  std::uint32_t group_end(Group g) const {
+    return begin_[(static_cast<std::size_t>(g) + 1) * ncell_total_];
+  }
+  double cell_size() const { return cell_size_; }
+  int reach() const { return reach_; }
+  const Vec<D>& domain_min() const { return min_; }
+  const Vec<D>& domain_max() const { return max_; }
+
+ private:
+  std::size_t key(std::int64_t cell, Kind k) const;
+
+  Vec<D> min_{}, max_{};
+  double cell_size_ = 0.0;
+  double inv_cell_ = 0.0;
+  int reach_ = 1;
+  std::array<std::int64_t, 3> n_{1, 1, 1};       // cells per axis, ghosts included
+  std::array<std::int64_t, 3> stride_{1, 1, 1};  // linear index strides
+  std::int64_t ncell_total_ = 0;
+  std::vector<std::uint32_t> begin_;  // begin_[k]..begin_[k+1]: particles of key k = c + g*ncells
+  std::vector<std::int64_t> pcell_;
+  std::vector<std::uint32_t> perm_;
+  std::vector<Vec<D>> vec_scratch_;
+  std::vector<double> dbl_scratch_;
+  std::vector<std::uint64_t> id_scratch_;
+  std::vector<Kind> kind_scratch_;
+  std::vector<std::int64_t> cell_scratch_;
+};
+
+}  // namespace vrsph

@@ -1,0 +1,33 @@
+// Tait equation of state (Monaghan 1994; Batchelor 1967), as in DualSPHysics:
+//   p = B [ (rho/rho0)^gamma - 1 ],   B = c0^2 rho0 / gamma.
+// c0 is a constant numerical speed of sound (weak compressibility), never a local one.
+#pragma once
+
+#include <cmath>
+
+namespace vrsph {
+
+struct TaitEos {
+  double rho0 = 1000.0;
+  double gamma = 7.0;
+  double c0 = 10.0;
+  double b = 0.0;  // B = c0^2 rho0 / gamma
+
+  TaitEos() = default;
+  TaitEos(double rho0_, double gamma_, double c0_)
+      : rho0(rho0_), gamma(gamma_), c0(c0_), b(c0_ * c0_ * rho0_ / gamma_) {}
+
+  double pressure(double rho) const {
+    const double ratio = rho / rho0;
+    if (gamma == 7.0) {  // exact, and several times cheaper than std::pow
+      const double r2 = ratio * ratio;
+      return b * (r2 * r2 * r2 * ratio - 1.0);
+    }
+    return b * (std::pow(ratio, gamma) - 1.0);
+  }
+
+  // Inverse: the density at which the EOS gives pressure p.
+  double density(double p) const { return rho0 * std::pow(1.0 + p / b, 1.0 / gamma); }
+};
+
+}  // namespace vrsph

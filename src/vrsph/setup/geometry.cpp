@@ -1,0 +1,182 @@
+#include "vrsph/setup/geometry.hpp"
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+namespace vrsph {
+namespace {
+
+// Number of lattice steps of size dp from a to b (tolerant to rounding of the case values).
+long steps_between(double a, double b, double dp) {
+  return static_cast<long>(std::floor((b - a) / dp + 1e-6));
+}
+
+// Calls fn(x) for every lattice node min + k dp with x <= max on each axis.
+template <int D, class Fn>
+void for_each_node(const Vec<D>& min, const Vec<D>& max, double dp, Fn&& fn) {
+  std::array<long, 3> n{1, 1, 1};
+  for (int k = 0; k < D; ++k) n[k] = steps_between(min[k], max[k], dp) + 1;
+  for (long c = 0; c < (D == 3 ? n[2] : 1); ++c)
+    for (long b = 0; b < n[1]; ++b)
+      for (long a = 0; a < n[0]; ++a) {
+        Vec<D> x = min;
+        x[0] += a * dp;
+        x[1] += b * dp;
+        if constexpr (D == 3) x[2] += c * dp;
+        fn(x);
+      }
+}
+
+template <int D, class Fn>
+void fill_ball_lattice(const Vec<D>& c, double radius, double dp, Fn&& fn) {
+  const long m = static_cast<long>(std::ceil(radius / dp)) + 1;
+  Vec<D> lo = c, hi = c;
+  for (int k = 0; k < D; ++k) {
+    lo[k] -= (m - 0.5) * dp;
+    hi[k] += (m - 0.5) * dp;
+  }
+  for_each_node<D>(lo, hi, dp, [&](const Vec<D>& x) {
+    if (norm2(x - c) < radius * radius) fn(x);
+  });
+}
+
+template <class Fn>
+void fill_circle_rings(const Vec<2>& c, double radius, double dp, Fn&& fn) {
+  const long rings = std::lround(radius / dp);
+  for (long k = 0; k < rings; ++k) {
+    const double r = (k + 0.5) * dp;
+    const long count = std::max(1L, std::lround(2.0 * std::numbers::pi * r / dp));
+    for (long q = 0; q < count; ++q) {
+      const double th = 2.0 * std::numbers::pi * q / count;
+      fn(Vec<2>{{c[0] + r * std::cos(th), c[1] + r * std::sin(th)}});
+    }
+  }
+}
+
+// Tank: `layers` rows of nodes below the min face of the vertical axis and outside the faces
+// of the other axes; the top stays open. Corner columns belong to the first axis' side walls.
+template <int D, class Fn>
+void fill_tank(const Vec<D>& min, const Vec<D>& max, int layers, double dp, Fn&& fn) {
+  const int vert = vertical_axis<D>();
+  const double grow = (layers - 1) * dp;
+  for (int l = 0; l < layers; ++l) {
+    Vec<D> lo = min, hi = max;  // bottom plate, grown sideways to cover the side walls
+    for (int k = 0; k < D; ++k) {
+      if (k == vert) continue;
+      lo[k] -= grow;
+      hi[k] += grow;
+    }
+    lo[vert] = hi[vert] = min[vert] - l * dp;
+    for_each_node<D>(lo, hi, dp, fn);
+  }
+  for (int axis = 0; axis < D; ++axis) {
+    if (axis == vert) continue;
+    for (int side = 0; side < 2; ++side) {
+      for (int l = 0; l < layers; ++l) {
+        Vec<D> lo = min, hi = max;
+        lo[vert] = min[vert] + dp;
+        for (int k = 0; k < D; ++k) {
+          if (k == vert || k == axis) continue;
+          // walls of the first horizontal axis span the grown extent; later ones fit inside
+          if (k > axis) { lo[k] -= grow; hi[k] += grow; } else { lo[k] += dp; hi[k] -= dp; }
+        }
+        const double face = side == 0 ? min[axis] - l * dp : max[axis] + l * dp;
+        lo[axis] = hi[axis] = face;
+        for_each_node<D>(lo, hi, dp, fn);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+template <int D>
+InitialSet<D> build_particles(const CaseSpec& spec) {
+  InitialSet<D> out;
+  ParticleSet<D>& ps = out.particles;
+  const double dp = spec.dp;
+  const double mass = spec.density * std::pow(dp, D);
+  std::uint64_t next_id = 0;
+  const int vert = vertical_axis<D>();
+  double zmin = 1e300, zmax = -1e300;
+  for (const FluidBlock& b : spec.fluid_blocks) {
+    const Vec<D> v = to_vec<D>(b.velocity);
+    auto add = [&](const Vec<D>& x) {
+      ps.push_back(next_id++, Kind::fluid, x, v, spec.density, mass);
+    };
+    if (b.shape == BlockShape::box) {
+      for_each_node<D>(to_vec<D>(b.min), to_vec<D>(b.max), dp, add);
+      zmin = std::min(zmin, b.min[vert]);
+      zmax = std::max(zmax, b.max[vert]);
+    } else {
+      if constexpr (D == 2) {
+        if (b.fill == FillMode::rings) fill_circle_rings(to_vec<2>(b.center), b.radius, dp, add);
+        else fill_ball_lattice<D>(to_vec<D>(b.center), b.radius, dp, add);
+      } else {
+        fill_ball_lattice<D>(to_vec<D>(b.center), b.radius, dp, add);
+      }
+      zmin = std::min(zmin, b.center[vert] - b.radius);
+      zmax = std::max(zmax, b.center[vert] + b.radius);
+    }
+  }
+  for (const WallBlock& w : spec.wall_blocks) {
+    auto add = [&](const Vec<D>& x) {
+      ps.push_back(next_id++, Kind::wall, x, Vec<D>{}, spec.density, mass);
+    };
+    if (w.shape == WallShape::tank) fill_tank<D>(to_vec<D>(w.min), to_vec<D>(w.max), w.layers, dp, add);
+    else for_each_node<D>(to_vec<D>(w.min), to_vec<D>(w.max), dp, add);
+  }
+  out.fluid_height = zmax > zmin ? zmax - zmin : 0.0;
+  return out;
+}
+
+template <int D>
+void apply_hydrostatic_density(ParticleSet<D>& ps, const Vec<D>& gravity, double rho0, double dp,
+                               const TaitEos& eos) {
+  const double g = norm(gravity);
+  if (g == 0.0) return;
+  const Vec<D> up = gravity * (-1.0 / g);
+  // Horizontal column key: gravity is taken along the vertical axis for the column map.
+  const int vert = vertical_axis<D>();
+  auto column = [&](const Vec<D>& x, int dx, int dy) {
+    std::array<long, 2> key{0, 0};
+    int m = 0;
+    for (int k = 0; k < D; ++k) {
+      if (k == vert) continue;
+      key[m] = std::lround(x[k] / dp) + (m == 0 ? dx : dy);
+      ++m;
+    }
+    return key;
+  };
+  std::map<std::array<long, 2>, double> top;  // highest fluid particle per column
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.kind[i] != Kind::fluid) continue;
+    auto [it, fresh] = top.try_emplace(column(ps.pos[i], 0, 0), dot(ps.pos[i], up));
+    if (!fresh) it->second = std::max(it->second, dot(ps.pos[i], up));
+  }
+  const int reach = 4;  // wall columns look this many dp sideways for fluid above them
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    double surface = -1e300;
+    const int ry = D == 3 ? reach : 0;
+    const int rx = ps.kind[i] == Kind::fluid ? 0 : reach;
+    for (int dy = -(ps.kind[i] == Kind::fluid ? 0 : ry); dy <= (ps.kind[i] == Kind::fluid ? 0 : ry); ++dy)
+      for (int dx = -rx; dx <= rx; ++dx) {
+        auto it = top.find(column(ps.pos[i], dx, dy));
+        if (it != top.end()) surface = std::max(surface, it->second);
+      }
+    if (surface == -1e300) continue;
+    const double depth = surface - dot(ps.pos[i], up);
+    if (depth > 0.0) ps.rho[i] = eos.density(rho0 * g * depth);
+  }
+}
+
+template InitialSet<2> build_particles<2>(const CaseSpec&);
+template InitialSet<3> build_particles<3>(const CaseSpec&);
+template void apply_hydrostatic_density<2>(ParticleSet<2>&, const Vec<2>&, double, double,
+                                           const TaitEos&);
+template void apply_hydrostatic_density<3>(ParticleSet<3>&, const Vec<3>&, double, double,
+                                           const TaitEos&);
+
+}  // namespace vrsph

@@ -1,0 +1,240 @@
+#include "vrsph/solver/forces.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "vrsph/physics/pair_terms.hpp"
+
+namespace vrsph {
+namespace {
+
+// Neighbour data packed as separate contiguous arrays (structure of arrays) so the inner loop
+// over a run of candidates j loads unit-stride vectors and the compiler can evaluate several
+// pairs per instruction (`omp simd`).
+template <int D>
+struct NeighbourArrays {
+  std::array<std::vector<double>, D> x, v;
+  std::vector<double> rho, p, vol, mass;
+
+  void pack(const ParticleSet<D>& ps) {
+    const std::size_t n = ps.size();
+    for (int k = 0; k < D; ++k) {
+      x[k].resize(n);
+      v[k].resize(n);
+    }
+    rho.resize(n);
+    p.resize(n);
+    vol.resize(n);
+    mass.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int k = 0; k < D; ++k) {
+        x[k][i] = ps.pos[i][k];
+        v[k][i] = ps.vel[i][k];
+      }
+      rho[i] = ps.rho[i];
+      p[i] = ps.p[i];
+      vol[i] = ps.mass[i] / ps.rho[i];
+      mass[i] = ps.mass[i];
+    }
+  }
+};
+
+// Running sums of one particle i (scalars, so `omp simd` can reduce them).
+struct Accum {
+  double acc[3] = {0.0, 0.0, 0.0};
+  double drho = 0.0;
+  double max_visc_dt = -1e300;
+  std::uint64_t pairs = 0;
+};
+
+// Sums the pair terms of fluid particle i over candidates [b, e). Candidates outside the support
+// (and i itself, r = 0) get a zero kernel factor instead of a branch, so the loop vectorises.
+// kWall: the run holds wall particles, which take no part in density diffusion (as DualSPHysics'
+// Fourtakas "full" variant). kSeries: the Fourtakas hydrostatic term may use its series form.
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall>
+inline void fluid_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, std::uint32_t i,
+                      std::uint32_t b, std::uint32_t e, Accum& a) {
+  double xi[3] = {}, vi[3] = {};
+  for (int k = 0; k < D; ++k) {
+    xi[k] = nb.x[k][i];
+    vi[k] = nb.v[k][i];
+  }
+  const double rho_i = nb.rho[i], p_i = nb.p[i];
+  const double inv_rho_i = 1.0 / rho_i;
+  const double support2 = prm.kernel.support2, inv_h = prm.kernel.inv_h;
+  const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
+  // Pointers to the start of the run, so the loop index is a plain unit-stride offset.
+  const double* xj0 = nb.x[0].data() + b;
+  const double* xj1 = nb.x[1].data() + b;
+  const double* xj2 = nb.x[D - 1].data() + b;
+  const double* vj0 = nb.v[0].data() + b;
+  const double* vj1 = nb.v[1].data() + b;
+  const double* vj2 = nb.v[D - 1].data() + b;
+  const double* rho = nb.rho.data() + b;
+  const double* p = nb.p.data() + b;
+  const double* vol = nb.vol.data() + b;
+  const double* mass = nb.mass.data() + b;
+  const std::ptrdiff_t len = static_cast<std::ptrdiff_t>(e) - static_cast<std::ptrdiff_t>(b);
+  double ax = 0.0, ay = 0.0, az = 0.0, drho = 0.0, vdt = -1e300, npair = 0.0;
+#pragma omp simd reduction(+ : ax, ay, az, drho, npair) reduction(max : vdt)
+  for (std::ptrdiff_t j = 0; j < len; ++j) {
+    const double rx = xi[0] - xj0[j], ry = xi[1] - xj1[j];
+    const double rz = D == 3 ? xi[2] - xj2[j] : 0.0;
+    const double r2 = rx * rx + ry * ry + rz * rz;
+    const bool in = r2 < support2 && r2 > 0.0;
+    const double t = 1.0 - 0.5 * std::sqrt(r2) * inv_h;
+    const double f = in ? f_coef * t * t * t : 0.0;  // F(r) = W'(r)/r, zero outside
+    const double ux = vi[0] - vj0[j], uy = vi[1] - vj1[j];
+    const double uz = D == 3 ? vi[2] - vj2[j] : 0.0;
+    const double rij_dot_gradw = f * r2;
+    const double vij_dot_rij = ux * rx + uy * ry + uz * rz;
+    const double inv_r2eta = 1.0 / (r2 + eta2);
+    // pressure: -m_j (p_i + p_j)/(rho_i rho_j) = -(p_i + p_j) V_j / rho_i
+    double g = -(p_i + p[j]) * vol[j] * inv_rho_i;
+    if constexpr (VM == ViscosityModel::artificial) {
+      g += artificial_visc_coef(mass[j], prm.alpha_c0_h, vij_dot_rij, rho_i, rho[j], r2, eta2);
+    }
+    g *= f;
+    ax += g * rx;
+    ay += g * ry;
+    az += g * rz;
+    if constexpr (VM == ViscosityModel::laminar) {
+      const double lv = mass[j] * 4.0 * prm.nu * rij_dot_gradw * inv_r2eta / (rho_i + rho[j]);
+      ax += lv * ux;
+      ay += lv * uy;
+      az += lv * uz;
+    }
+    double dr = rho_i * vol[j] * f * vij_dot_rij;  // continuity: rho_i V_j v_ij . grad W
+    if constexpr (!kWall && DM == DiffusionModel::molteni) {
+      dr += prm.two_delta_h_c0 * vol[j] * (rho_i - rho[j]) * rij_dot_gradw * inv_r2eta;
+    } else if constexpr (!kWall && DM == DiffusionModel::fourtakas) {
+      const double z_ij = rx * prm.up[0] + ry * prm.up[1] + (D == 3 ? rz * prm.up[D - 1] : 0.0);
+      const double rho_h = prm.eos.rho0 * binomial_series_minus_one(prm.rho0_g_over_b * z_ij,
+                                                                      prm.inv_gamma);
+      dr += prm.two_delta_h_c0 * vol[j] * ((rho_i - rho[j]) + rho_h) * rij_dot_gradw * inv_r2eta;
+    }
+    drho += dr;
+    vdt = std::max(vdt, in ? vij_dot_rij * inv_r2eta : -1e300);
+    npair += in ? 1.0 : 0.0;
+  }
+  a.acc[0] += ax;
+  a.acc[1] += ay;
+  a.acc[2] += az;
+  a.drho += drho;
+  a.max_visc_dt = std::max(a.max_visc_dt, vdt);
+  a.pairs += static_cast<std::uint64_t>(npair);
+}
+
+// Continuity of wall particle i over the fluid candidates [b, e) (dynamic boundary).
+template <int D>
+inline void wall_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, std::uint32_t i,
+                     std::uint32_t b, std::uint32_t e, Accum& a) {
+  double xi[3] = {}, vi[3] = {};
+  for (int k = 0; k < D; ++k) {
+    xi[k] = nb.x[k][i];
+    vi[k] = nb.v[k][i];
+  }
+  const double rho_i = nb.rho[i];
+  const double support2 = prm.kernel.support2, inv_h = prm.kernel.inv_h;
+  const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
+  const double* xj0 = nb.x[0].data() + b;
+  const double* xj1 = nb.x[1].data() + b;
+  const double* xj2 = nb.x[D - 1].data() + b;
+  const double* vj0 = nb.v[0].data() + b;
+  const double* vj1 = nb.v[1].data() + b;
+  const double* vj2 = nb.v[D - 1].data() + b;
+  const double* vol = nb.vol.data() + b;
+  const std::ptrdiff_t len = static_cast<std::ptrdiff_t>(e) - static_cast<std::ptrdiff_t>(b);
+  double drho = 0.0, vdt = -1e300, npair = 0.0;
+#pragma omp simd reduction(+ : drho, npair) reduction(max : vdt)
+  for (std::ptrdiff_t j = 0; j < len; ++j) {
+    const double rx = xi[0] - xj0[j], ry = xi[1] - xj1[j];
+    const double rz = D == 3 ? xi[2] - xj2[j] : 0.0;
+    const double r2 = rx * rx + ry * ry + rz * rz;
+    const bool in = r2 < support2 && r2 > 0.0;
+    const double t = 1.0 - 0.5 * std::sqrt(r2) * inv_h;
+    const double f = in ? f_coef * t * t * t : 0.0;
+    const double ux = vi[0] - vj0[j], uy = vi[1] - vj1[j];
+    const double uz = D == 3 ? vi[2] - vj2[j] : 0.0;
+    const double vij_dot_rij = ux * rx + uy * ry + uz * rz;
+    drho += rho_i * vol[j] * f * vij_dot_rij;
+    vdt = std::max(vdt, in ? vij_dot_rij / (r2 + eta2) : -1e300);
+    npair += in ? 1.0 : 0.0;
+  }
+  a.drho += drho;
+  a.max_visc_dt = std::max(a.max_visc_dt, vdt);
+  a.pairs += static_cast<std::uint64_t>(npair);
+}
+
+template <int D, ViscosityModel VM, DiffusionModel DM>
+ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
+                      const NeighbourArrays<D>& nb) {
+  const auto& cells = grid.particle_cells();
+  const auto n = static_cast<std::int64_t>(ps.size());
+  double max_visc_dt = -1e300, max_acc2 = 0.0;
+  std::uint64_t pairs = 0;
+#pragma omp parallel for schedule(dynamic, 512) reduction(max : max_visc_dt, max_acc2) \
+    reduction(+ : pairs)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::uint32_t>(ii);
+    Accum a;
+    if (ps.kind[i] == Kind::wall) {
+      grid.for_each_run(cells[i], Group::fluid,
+                        [&](std::uint32_t b, std::uint32_t e) { wall_run(prm, nb, i, b, e, a); });
+    } else {
+      grid.for_each_run(cells[i], Group::fluid, [&](std::uint32_t b, std::uint32_t e) {
+        fluid_run<D, VM, DM, false>(prm, nb, i, b, e, a);
+      });
+      grid.for_each_run(cells[i], Group::wall, [&](std::uint32_t b, std::uint32_t e) {
+        fluid_run<D, VM, DM, true>(prm, nb, i, b, e, a);
+      });
+    }
+    Vec<D> acc;
+    for (int k = 0; k < D; ++k) acc[k] = a.acc[k];
+    ps.acc[i] = acc;
+    ps.drho[i] = a.drho;
+    if (ps.kind[i] != Kind::wall) max_acc2 = std::max(max_acc2, norm2(acc));
+    max_visc_dt = std::max(max_visc_dt, a.max_visc_dt);
+    pairs += a.pairs;
+  }
+  return {max_visc_dt, std::sqrt(max_acc2), pairs};
+}
+
+template <int D, ViscosityModel VM>
+ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
+                              const CellGrid<D>& grid, const NeighbourArrays<D>& nb) {
+  switch (prm.diffusion) {
+    case DiffusionModel::none: return force_loop<D, VM, DiffusionModel::none>(prm, ps, grid, nb);
+    case DiffusionModel::molteni:
+      return force_loop<D, VM, DiffusionModel::molteni>(prm, ps, grid, nb);
+    case DiffusionModel::fourtakas:
+      return force_loop<D, VM, DiffusionModel::fourtakas>(prm, ps, grid, nb);
+  }
+  return {};
+}
+
+}  // namespace
+
+template <int D>
+ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid) {
+  const std::size_t n = ps.size();
+  ps.p.resize(n);
+  ps.acc.resize(n);
+  ps.drho.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) ps.p[i] = prm.eos.pressure(ps.rho[i]);
+  static NeighbourArrays<D> nb;  // reused between calls: no allocation once sizes settle
+  nb.pack(ps);
+  if (prm.viscosity == ViscosityModel::laminar) {
+    return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, nb);
+  }
+  return dispatch_diffusion<D, ViscosityModel::artificial>(prm, ps, grid, nb);
+}
+
+template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&);
+template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&);
+
+}  // namespace vrsph
