@@ -1,2 +1,119 @@
-// Placeholder entry point, replaced by the command-line front end.
-int main() { return 0; }
+// The `vrsph` command: run, check and bench a case file (CONTRACT.md "Command line").
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "vrsph/driver/run.hpp"
+#include "vrsph/setup/case_parser.hpp"
+
+namespace {
+
+using namespace vrsph;
+
+// Reads a case file, applies the --set overrides in order and validates it.
+CaseSpec load_case(const std::string& path, const std::vector<std::string>& sets) {
+  toml::table tbl = load_case_table(path);
+  for (const std::string& s : sets) apply_override(tbl, s);
+  return parse_case(tbl, path);
+}
+
+// A resumed run may change how long it runs and how often it writes, nothing physical.
+void check_resume_overrides(const std::vector<std::string>& sets) {
+  for (const std::string& s : sets) {
+    const std::string key = s.substr(0, s.find('='));
+    if (key != "case.end_time" && key != "output.interval") {
+      throw CaseError(fmt::format(
+          "--set {}: cannot change {} when resuming (only case.end_time and output.interval)", s,
+          key));
+    }
+  }
+}
+
+int dispatch(int argc, char** argv) {
+  CLI::App app{"vrsph: weakly compressible SPH with surface tension and variable resolution"};
+  app.set_version_flag("--version", std::string(VRSPH_VERSION));
+  app.require_subcommand(1);
+
+  std::string case_path, out_dir, resume_dir, json_out;
+  std::vector<std::string> sets;
+  int threads = 0, cells = 2;
+  bool quiet = false, force = false;
+  double bench_time = 0.05;
+
+  CLI::App* run = app.add_subcommand("run", "run a case (or resume a stopped run)");
+  run->add_option("case", case_path, "case file (TOML)");
+  run->add_option("--out", out_dir, "output folder (default out/<case name>)");
+  run->add_option("--resume", resume_dir, "continue the run in this folder from its checkpoint");
+  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  run->add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
+  run->add_flag("--quiet", quiet, "no progress line and no start/end summaries");
+  run->add_flag("--force", force, "overwrite an earlier run in the output folder");
+  run->add_option("--cells-per-support", cells, "neighbour cells per 2h (1 full, 2 half)")
+      ->check(CLI::Range(1, 4));
+
+  CLI::App* check = app.add_subcommand("check", "validate a case and report particle counts and dt");
+  check->add_option("case", case_path, "case file (TOML)")->required();
+  check->add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
+
+  CLI::App* bench = app.add_subcommand("bench", "time a case without outputs (default: the benchmark case)");
+  bench->add_option("case", case_path, "case file (default cases/bench_dam_break_2d.toml)");
+  bench->add_option("--time", bench_time, "simulated time in s")->check(CLI::PositiveNumber);
+  bench->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  bench->add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
+  bench->add_option("--json", json_out, "also write the figures to this JSON file");
+  bench->add_option("--cells-per-support", cells, "neighbour cells per 2h (1 full, 2 half)")
+      ->check(CLI::Range(1, 4));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    fmt::print(stderr, "vrsph: {}\n", e.what());
+    return kExitBadInput;
+  }
+
+  if (*check) return check_case(load_case(case_path, sets));
+  if (*bench) {
+    if (case_path.empty()) case_path = std::string(VRSPH_SOURCE_DIR) + "/cases/bench_dam_break_2d.toml";
+    BenchOptions bo{bench_time, threads, cells, {}};
+    if (!json_out.empty()) bo.json_out = json_out;
+    return bench_case(load_case(case_path, sets), bo);
+  }
+  RunOptions ro;
+  ro.threads = threads;
+  ro.quiet = quiet;
+  ro.force = force;
+  ro.cells_per_support = cells;
+  if (!resume_dir.empty()) {
+    if (!case_path.empty()) throw CaseError("run: give either a case file or --resume DIR, not both");
+    check_resume_overrides(sets);
+    ro.resume = true;
+    ro.out_dir = resume_dir;
+    return run_case(load_case((std::filesystem::path(resume_dir) / "case.toml").string(), sets), ro);
+  }
+  if (case_path.empty()) throw CaseError("run: a case file (or --resume DIR) is required");
+  CaseSpec spec = load_case(case_path, sets);
+  ro.out_dir = out_dir.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(out_dir);
+  return run_case(std::move(spec), ro);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return dispatch(argc, argv);
+  } catch (const vrsph::CaseError& e) {
+    fmt::print(stderr, "vrsph: {}\n", e.what());
+    return vrsph::kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "vrsph: {}\n", e.what());
+    return vrsph::kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "vrsph: error: {}\n", e.what());
+    return vrsph::kExitIoError;
+  }
+}

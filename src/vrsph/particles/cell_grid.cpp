@@ -1,6 +1,7 @@
 #include "vrsph/particles/cell_grid.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace vrsph {
@@ -21,6 +22,32 @@ CellGrid<D>::CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double
   if (ncell_total_ > (std::int64_t{1} << 31)) {
     throw std::invalid_argument("cell grid: domain too large for its cell size (over 2^31 cells)");
   }
+}
+
+// Lays the cell table over the cells the particles occupy now (plus `reach` ghost cells), so
+// the table, and the cost of clearing and scanning it, follows the particles, not the domain.
+template <int D>
+void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
+  std::array<std::int64_t, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  for (int k = 0; k < D; ++k) {
+    lo[k] = std::numeric_limits<std::int64_t>::max();
+    hi[k] = std::numeric_limits<std::int64_t>::min();
+  }
+  for (const auto& x : ps.pos) {
+    if (!inside(x)) continue;
+    for (int k = 0; k < D; ++k) {
+      const auto c = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_);
+      lo[k] = std::min(lo[k], c);
+      hi[k] = std::max(hi[k], c);
+    }
+  }
+  ncell_total_ = 1;
+  for (int k = 0; k < D; ++k) {
+    if (hi[k] < lo[k]) lo[k] = hi[k] = 0;  // no particle inside
+    lo_[k] = lo[k] - reach_;
+    n_[k] = hi[k] - lo[k] + 1 + 2 * reach_;
+    ncell_total_ *= n_[k];
+  }
   stride_ = {1, n_[0], n_[0] * n_[1]};
   begin_.assign(2 * static_cast<std::size_t>(ncell_total_) + 1, 0);
 }
@@ -37,7 +64,7 @@ template <int D>
 std::int64_t CellGrid<D>::cell_of(const Vec<D>& x) const {
   std::int64_t c = 0;
   for (int k = 0; k < D; ++k) {
-    const auto ck = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_) + reach_;
+    const auto ck = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_) - lo_[k];
     c += ck * stride_[k];
   }
   return c;
@@ -64,7 +91,7 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
   std::vector<std::uint64_t> lost;
   pcell_.resize(n);
-  std::fill(begin_.begin(), begin_.end(), 0u);
+  fit_to(ps);
   std::size_t kept = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!inside(ps.pos[i])) {

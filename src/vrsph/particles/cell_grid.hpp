@@ -29,7 +29,7 @@ class CellGrid {
            int cells_per_support);
 
   bool inside(const Vec<D>& x) const;
-  std::int64_t cell_of(const Vec<D>& x) const;  // linear index; x must be inside
+  std::int64_t cell_of(const Vec<D>& x) const;  // linear index; x inside, after a sort
 
   // Sorts all particle arrays by cell (stable), after deleting particles outside the domain.
   // Returns the ids of the deleted particles.
@@ -70,11 +70,13 @@ class CellGrid {
 
  private:
   std::size_t key(std::int64_t cell, Kind k) const;
+  void fit_to(const ParticleSet<D>& ps);
 
   Vec<D> min_{}, max_{};
   double cell_size_ = 0.0;
   double inv_cell_ = 0.0;
   int reach_ = 1;
+  std::array<std::int64_t, 3> lo_{0, 0, 0};      // absolute cell coordinate of table cell 0
   std::array<std::int64_t, 3> n_{1, 1, 1};       // cells per axis, ghosts included
   std::array<std::int64_t, 3> stride_{1, 1, 1};  // linear index strides
   std::int64_t ncell_total_ = 0;

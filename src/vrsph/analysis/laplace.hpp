@@ -1,0 +1,26 @@
+// Pressure-profile error against the Laplace pressure (PHYSICS.md section 6, the poster's table):
+// RMSE of the particle pressures along a line (the droplet diameter) against p = sigma / R,
+// NRMSE = RMSE / p_expected. `rmse_all` uses every particle of the line; `rmse` and
+// `mean_interior` only those at least 2h from both ends of the line's particle set, away from
+// the free-surface rows where the pressure falls to zero.
+#pragma once
+
+#include <cstddef>
+#include <span>
+
+namespace vrsph {
+
+struct LaplaceError {
+  double expected = 0.0;
+  double mean_interior = 0.0;
+  double rmse = 0.0;
+  double nrmse = 0.0;
+  double rmse_all = 0.0;
+  std::size_t n_points = 0;  // interior points used for rmse
+};
+
+// s: distance along the line of each sample, p: its pressure (same length).
+LaplaceError laplace_error(std::span<const double> s, std::span<const double> p, double expected,
+                           double h);
+
+}  // namespace vrsph

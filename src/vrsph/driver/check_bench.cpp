@@ -1,0 +1,93 @@
+// `vrsph check` (set-up report without a run) and `vrsph bench` (timed run without outputs).
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "vrsph/driver/run.hpp"
+#include "vrsph/output/summary.hpp"
+#include "vrsph/solver/simulation.hpp"
+
+namespace vrsph {
+namespace {
+
+template <int D>
+int check_impl(CaseSpec& spec) {
+  Simulation<D> sim(spec);
+  const auto& ps = sim.particles();
+  const auto& grid = sim.grid();
+  fmt::print("case {} ({}D) is valid\n", spec.name, D);
+  fmt::print("  particles: {} fluid, {} wall ({} in all)\n", ps.count(Kind::fluid),
+             ps.count(Kind::wall), ps.size());
+  fmt::print("  dp = {:g} m, h = {:g} m ({:g} dp), particle mass = {:g} kg\n", spec.dp,
+             sim.params().h, spec.h_over_dp, sim.params().mass);
+  fmt::print("  c0 = {:.6g} m/s (max_speed {:.6g} m/s), B = {:.6g} Pa\n", sim.setup().c0,
+             sim.setup().max_speed, sim.params().eos.b);
+  fmt::print("  first dt = {:.6g} s, about {:.0f} steps to t = {:g} s at that dt\n", sim.dt_next(),
+             spec.end_time / sim.dt_next(), spec.end_time);
+  std::string lo, hi;
+  for (int k = 0; k < D; ++k) {
+    lo += fmt::format("{}{:g}", k ? ", " : "", grid.domain_min()[k]);
+    hi += fmt::format("{}{:g}", k ? ", " : "", grid.domain_max()[k]);
+  }
+  fmt::print("  domain [{}] .. [{}] m, {} cells of {:g} m\n", lo, hi, grid.cell_count(),
+             grid.cell_size());
+  return kExitOk;
+}
+
+template <int D>
+int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
+  spec.end_time = opt.sim_time;
+  Simulation<D> sim(spec, opt.cells_per_support);
+  const int threads = omp_get_max_threads();
+  const auto t0 = std::chrono::steady_clock::now();
+  while (sim.time() < opt.sim_time * (1 - 1e-9)) sim.step();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const RunCounters& c = sim.counters();
+  const PassTimes& t = sim.pass_times();
+  const double accounted = t.sort + t.forces + t.update + t.checks;
+  nlohmann::json j;
+  j["case"] = spec.name;
+  j["particles"] = sim.particles().size();
+  j["threads"] = threads;
+  j["sim_time"] = sim.time();
+  j["steps"] = sim.step_count();
+  j["wall_seconds"] = wall;
+  j["steps_per_second"] = sim.step_count() / wall;
+  j["particle_steps_per_second"] = c.particle_steps / wall;
+  j["pair_interactions_per_second"] = c.pairs / wall;
+  j["pairs_per_particle_step"] = static_cast<double>(c.pairs) / static_cast<double>(c.particle_steps);
+  j["pass_share"] = {{"sort", t.sort / wall},     {"forces", t.forces / wall},
+                     {"update", t.update / wall}, {"checks", t.checks / wall},
+                     {"other", (wall - accounted) / wall}};
+  j["cells_per_support"] = opt.cells_per_support;
+  const double anchor = 1.54e6;  // DualSPHysics 5.4 CPU, 2 threads, same case and machine type
+  j["ratio_to_dualsphysics"] = c.particle_steps / wall / anchor;
+  fmt::print("bench {}: {} particles, {} steps to t = {:g} s on {} thread(s) in {:.2f} s\n",
+             spec.name, sim.particles().size(), sim.step_count(), sim.time(), threads, wall);
+  fmt::print("  {:.3f} M particle-steps/s ({:.2f}x DualSPHysics' 1.54 M), {:.1f} M pair "
+             "interactions/s, {:.1f} steps/s\n",
+             c.particle_steps / wall / 1e6, c.particle_steps / wall / anchor, c.pairs / wall / 1e6,
+             sim.step_count() / wall);
+  fmt::print("  time per pass: forces {:.1f}%, sort {:.1f}%, update {:.1f}%, checks {:.1f}%, "
+             "other {:.1f}%\n",
+             100 * t.forces / wall, 100 * t.sort / wall, 100 * t.update / wall,
+             100 * t.checks / wall, 100 * (wall - accounted) / wall);
+  fmt::print("{}\n", j.dump());
+  if (opt.json_out) write_summary_json(*opt.json_out, j);
+  return kExitOk;
+}
+
+}  // namespace
+
+int check_case(CaseSpec spec) {
+  return spec.dimension == 2 ? check_impl<2>(spec) : check_impl<3>(spec);
+}
+
+int bench_case(CaseSpec spec, const BenchOptions& opt) {
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  return spec.dimension == 2 ? bench_impl<2>(spec, opt) : bench_impl<3>(spec, opt);
+}
+
+}  // namespace vrsph

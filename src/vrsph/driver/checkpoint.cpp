@@ -1,0 +1,174 @@
+#include "vrsph/driver/checkpoint.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "vrsph/output/atomic_file.hpp"
+
+namespace vrsph {
+namespace {
+
+constexpr char kMagic[8] = {'V', 'R', 'S', 'P', 'H', 'C', 'K', '\0'};
+constexpr std::uint32_t kVersion = 1;
+enum class RecordType : std::uint8_t { f64 = 1, i64 = 2, u64 = 3, u8 = 4 };
+
+template <class T>
+void write_pod(std::ostream& os, const T& v) {
+  os.write(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+template <class T>
+T read_pod(std::istream& is) {
+  T v{};
+  is.read(reinterpret_cast<char*>(&v), sizeof(T));
+  if (!is) throw std::runtime_error("checkpoint: file is truncated");
+  return v;
+}
+
+template <class T>
+void write_records(std::ostream& os, const std::map<std::string, std::vector<T>>& m,
+                   RecordType type) {
+  for (const auto& [name, v] : m) {
+    write_pod(os, static_cast<std::uint32_t>(name.size()));
+    os.write(name.data(), static_cast<std::streamsize>(name.size()));
+    write_pod(os, type);
+    write_pod(os, static_cast<std::uint64_t>(v.size()));
+    os.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+  }
+}
+
+template <class T>
+void read_array(std::istream& is, std::uint64_t count, std::vector<T>& v) {
+  v.resize(count);
+  is.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(count * sizeof(T)));
+  if (!is) throw std::runtime_error("checkpoint: file is truncated");
+}
+
+template <class T>
+const std::vector<T>& find(const std::map<std::string, std::vector<T>>& m, const std::string& name) {
+  auto it = m.find(name);
+  if (it == m.end()) throw std::runtime_error("checkpoint: record '" + name + "' is missing");
+  return it->second;
+}
+
+}  // namespace
+
+void Checkpoint::put(const std::string& n, std::vector<double> v) { f64_[n] = std::move(v); }
+void Checkpoint::put(const std::string& n, std::vector<std::int64_t> v) { i64_[n] = std::move(v); }
+void Checkpoint::put(const std::string& n, std::vector<std::uint64_t> v) { u64_[n] = std::move(v); }
+void Checkpoint::put(const std::string& n, std::vector<std::uint8_t> v) { u8_[n] = std::move(v); }
+
+const std::vector<double>& Checkpoint::f64(const std::string& n) const { return find(f64_, n); }
+const std::vector<std::int64_t>& Checkpoint::i64(const std::string& n) const { return find(i64_, n); }
+const std::vector<std::uint64_t>& Checkpoint::u64(const std::string& n) const { return find(u64_, n); }
+const std::vector<std::uint8_t>& Checkpoint::u8(const std::string& n) const { return find(u8_, n); }
+
+double Checkpoint::scalar(const std::string& n) const {
+  const auto& v = f64(n);
+  if (v.size() != 1) throw std::runtime_error("checkpoint: record '" + n + "' is not a scalar");
+  return v[0];
+}
+
+bool Checkpoint::has(const std::string& n) const {
+  return f64_.count(n) || i64_.count(n) || u64_.count(n) || u8_.count(n);
+}
+
+void Checkpoint::save(const std::filesystem::path& path) const {
+  AtomicWriter w(path);
+  std::ostream& os = w.stream();
+  os.write(kMagic, sizeof(kMagic));
+  write_pod(os, kVersion);
+  write_records(os, f64_, RecordType::f64);
+  write_records(os, i64_, RecordType::i64);
+  write_records(os, u64_, RecordType::u64);
+  write_records(os, u8_, RecordType::u8);
+  w.commit();
+}
+
+Checkpoint Checkpoint::load(const std::filesystem::path& path) {
+  std::ifstream is(path, std::ios::binary);
+  if (!is) throw std::runtime_error(path.string() + ": cannot open checkpoint");
+  char magic[8];
+  is.read(magic, sizeof(magic));
+  if (!is || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
+    throw std::runtime_error(path.string() + ": not a vrsph checkpoint");
+  }
+  const auto version = read_pod<std::uint32_t>(is);
+  if (version != kVersion) {
+    throw std::runtime_error(path.string() + ": checkpoint version " + std::to_string(version) +
+                             " is not supported (this build reads version 1)");
+  }
+  Checkpoint c;
+  while (is.peek() != std::char_traits<char>::eof()) {
+    const auto len = read_pod<std::uint32_t>(is);
+    std::string name(len, '\0');
+    is.read(name.data(), len);
+    const auto type = read_pod<RecordType>(is);
+    const auto count = read_pod<std::uint64_t>(is);
+    switch (type) {
+      case RecordType::f64: read_array(is, count, c.f64_[name]); break;
+      case RecordType::i64: read_array(is, count, c.i64_[name]); break;
+      case RecordType::u64: read_array(is, count, c.u64_[name]); break;
+      case RecordType::u8: read_array(is, count, c.u8_[name]); break;
+      default: throw std::runtime_error(path.string() + ": unknown record type in checkpoint");
+    }
+  }
+  return c;
+}
+
+template <int D>
+void Checkpoint::put_particles(int level, const ParticleSet<D>& ps) {
+  const std::string pre = "level" + std::to_string(level) + ".";
+  const std::size_t n = ps.size();
+  std::vector<double> pos(n * D), vel(n * D);
+  std::vector<std::uint8_t> kind(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < D; ++k) {
+      pos[i * D + k] = ps.pos[i][k];
+      vel[i * D + k] = ps.vel[i][k];
+    }
+    kind[i] = static_cast<std::uint8_t>(ps.kind[i]);
+  }
+  put(pre + "id", ps.id);
+  put(pre + "kind", std::move(kind));
+  put(pre + "pos", std::move(pos));
+  put(pre + "vel", std::move(vel));
+  put(pre + "rho", ps.rho);
+  put(pre + "mass", ps.mass);
+}
+
+template <int D>
+void Checkpoint::get_particles(int level, ParticleSet<D>& ps) const {
+  const std::string pre = "level" + std::to_string(level) + ".";
+  const auto& id = u64(pre + "id");
+  const std::size_t n = id.size();
+  const auto& kind = u8(pre + "kind");
+  const auto& pos = f64(pre + "pos");
+  const auto& vel = f64(pre + "vel");
+  const auto& rho = f64(pre + "rho");
+  const auto& mass = f64(pre + "mass");
+  if (kind.size() != n || pos.size() != n * D || vel.size() != n * D || rho.size() != n ||
+      mass.size() != n) {
+    throw std::runtime_error("checkpoint: particle arrays of " + pre + " have mismatched sizes");
+  }
+  ps = ParticleSet<D>{};
+  ps.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    ps.id[i] = id[i];
+    ps.kind[i] = static_cast<Kind>(kind[i]);
+    for (int k = 0; k < D; ++k) {
+      ps.pos[i][k] = pos[i * D + k];
+      ps.vel[i][k] = vel[i * D + k];
+    }
+    ps.rho[i] = rho[i];
+    ps.mass[i] = mass[i];
+  }
+}
+
+template void Checkpoint::put_particles<2>(int, const ParticleSet<2>&);
+template void Checkpoint::put_particles<3>(int, const ParticleSet<3>&);
+template void Checkpoint::get_particles<2>(int, ParticleSet<2>&) const;
+template void Checkpoint::get_particles<3>(int, ParticleSet<3>&) const;
+
+}  // namespace vrsph

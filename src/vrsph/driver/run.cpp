@@ -1,0 +1,138 @@
+#include "vrsph/driver/run.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "vrsph/driver/checkpoint.hpp"
+#include "vrsph/driver/run_outputs.hpp"
+#include "vrsph/output/atomic_file.hpp"
+#include "vrsph/output/progress.hpp"
+#include "vrsph/output/summary.hpp"
+#include "vrsph/setup/case_parser.hpp"
+
+namespace vrsph {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Output time of snapshot k (k = 0 is the start).
+double output_time(const CaseSpec& spec, int k) {
+  return spec.output_interval > 0.0 ? k * spec.output_interval : (k == 0 ? 0.0 : spec.end_time);
+}
+
+// A fresh run refuses to overwrite an earlier run unless forced; forced, it removes the files a
+// run writes (and nothing else) so no stale snapshot survives.
+void prepare_out_dir(const std::filesystem::path& dir, bool force) {
+  namespace fs = std::filesystem;
+  if (fs::exists(dir / "case.toml") || fs::exists(dir / "checkpoint.bin")) {
+    if (!force) {
+      throw CaseError(fmt::format(
+          "--out {}: holds an earlier run (case.toml): use --force to overwrite it or "
+          "--resume to continue it",
+          dir.string()));
+    }
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string n = e.path().filename().string();
+      const bool ours = n.starts_with("particles_") || n.starts_with("line_") ||
+                        n == "particles.pvd" || n == "series.csv" || n == "summary.json" ||
+                        n == "case.toml" || n == "checkpoint.bin";
+      if (ours && e.is_regular_file()) fs::remove(e.path());
+    }
+  }
+  fs::create_directories(dir);
+}
+
+template <int D>
+void restore_from_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
+  ck.get_particles<D>(0, sim.particles());
+  const auto& cv = ck.u64("counters");
+  RunCounters c;
+  c.particle_steps = cv.at(0);
+  c.pairs = cv.at(1);
+  c.lost_fluid = cv.at(2);
+  for (std::size_t k = 0; k < 4; ++k) c.dt_limit_counts[k] = cv.at(3 + k);
+  c.wall_seconds = ck.scalar("wall_seconds");
+  sim.restore(ck.scalar("time"), ck.i64("step").at(0), ck.scalar("dt_next"), c, cv.at(7));
+  sim.resort();
+}
+
+template <int D>
+int run_impl(CaseSpec& spec, const RunOptions& opt) {
+  Simulation<D> sim(spec, opt.cells_per_support);  // fills spec.max_speed when derived
+  int index = 0;
+  if (opt.resume) {
+    const Checkpoint ck = Checkpoint::load(opt.out_dir / "checkpoint.bin");
+    restore_from_checkpoint(sim, ck);
+    index = static_cast<int>(ck.i64("output_index").at(0)) + 1;
+    if (sim.time() >= spec.end_time) {
+      throw CaseError(fmt::format(
+          "case.end_time = {}: the run in {} already reached t = {} s (raise it with --set "
+          "case.end_time=T)",
+          spec.end_time, opt.out_dir.string(), sim.time()));
+    }
+  }
+  write_file_atomic(opt.out_dir / "case.toml", case_to_toml(spec));
+  RunOutputs<D> out(spec, opt.out_dir, !opt.resume, sim.time());
+  const int threads = omp_get_max_threads();
+  if (!opt.quiet) {
+    fmt::print("vrsph: {} ({}D): {} fluid + {} wall particles, dp = {:g} m, h = {:g} m, c0 = {:.4g} m/s, "
+               "{} thread(s), output in {}{}\n",
+               spec.name, D, sim.particles().count(Kind::fluid), sim.particles().count(Kind::wall),
+               spec.dp, sim.params().h, sim.setup().c0, threads, opt.out_dir.string(),
+               opt.resume ? fmt::format(" (resumed at t = {:g} s)", sim.time()) : "");
+    std::fflush(stdout);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const double wall_before = sim.counters().wall_seconds;
+  if (!opt.resume) out.write(sim, index++);
+  Progress progress(spec.end_time, !opt.quiet && isatty(STDOUT_FILENO));
+  const double eps_t = 1e-9 * spec.end_time;
+  std::string error;
+  try {
+    while (sim.time() < spec.end_time - eps_t) {
+      sim.step();
+      const double elapsed = seconds_since(t0);
+      sim.counters().wall_seconds = wall_before + elapsed;
+      const bool at_end = sim.time() >= spec.end_time - eps_t;
+      if (at_end || sim.time() >= output_time(spec, index) - eps_t) out.write(sim, index++);
+      progress.update(sim.time(), static_cast<long>(sim.step_count()),
+                      elapsed > 0 ? sim.step_count() / elapsed : 0.0);
+    }
+  } catch (const InstabilityError& e) {
+    error = e.what();
+  }
+  progress.finish();
+  const double wall = wall_before + seconds_since(t0);
+  write_summary_json(opt.out_dir / "summary.json",
+                     out.summary(sim, error.empty(), wall, threads, error));
+  if (!error.empty()) {
+    fmt::print(stderr, "vrsph: {} (outputs up to snapshot {} kept in {})\n", error, index - 1,
+               opt.out_dir.string());
+    return kExitUnstable;
+  }
+  if (!opt.quiet) {
+    const RunCounters& c = sim.counters();
+    fmt::print("vrsph: done: t = {:g} s in {} steps, {:.1f} s wall, {:.3g} M particle-steps/s, "
+               "{:.3g} M pair interactions/s\n",
+               sim.time(), sim.step_count(), wall, c.particle_steps / wall / 1e6,
+               c.pairs / wall / 1e6);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int run_case(CaseSpec spec, const RunOptions& opt) {
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  if (!opt.resume) prepare_out_dir(opt.out_dir, opt.force);
+  return spec.dimension == 2 ? run_impl<2>(spec, opt) : run_impl<3>(spec, opt);
+}
+
+}  // namespace vrsph

@@ -1,0 +1,46 @@
+// The `vrsph run` / `vrsph check` / `vrsph bench` drivers: case -> simulation -> outputs.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vrsph/setup/case_spec.hpp"
+
+namespace vrsph {
+
+// Exit statuses of the command (CONTRACT.md: 0 success, non-zero with a one-line reason).
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 1;
+inline constexpr int kExitUnstable = 2;
+inline constexpr int kExitIoError = 3;
+
+struct RunOptions {
+  std::filesystem::path out_dir;
+  int threads = 0;        // 0: OpenMP default
+  bool quiet = false;
+  bool force = false;     // overwrite an existing run in out_dir
+  bool resume = false;    // continue from out_dir/checkpoint.bin
+  int cells_per_support = 2;
+};
+
+// Runs a validated case (or resumes one). Prints a one-line reason on stderr on failure and
+// returns the exit status.
+int run_case(CaseSpec spec, const RunOptions& opt);
+
+// Builds the particles and reports counts, h, c0, dt and the grid without running.
+int check_case(CaseSpec spec);
+
+struct BenchOptions {
+  double sim_time = 0.05;
+  int threads = 0;
+  int cells_per_support = 2;
+  std::optional<std::filesystem::path> json_out;
+};
+
+// Runs a case for a fixed simulated time without outputs and prints particle-steps/s, pair
+// interactions/s and the share of time per pass (text and JSON).
+int bench_case(CaseSpec spec, const BenchOptions& opt);
+
+}  // namespace vrsph

@@ -1,0 +1,37 @@
+// Everything a run writes at an output time: snapshot (vtp/csv + pvd), line profiles, a series
+// row and the checkpoint; plus the final summary.json.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "vrsph/output/series.hpp"
+#include "vrsph/output/snapshot.hpp"
+#include "vrsph/setup/case_spec.hpp"
+#include "vrsph/solver/simulation.hpp"
+
+namespace vrsph {
+
+template <int D>
+class RunOutputs {
+ public:
+  // fresh: start new files; otherwise continue the files of a run resumed at time t.
+  RunOutputs(const CaseSpec& spec, std::filesystem::path dir, bool fresh, double t);
+
+  // Writes snapshot `index` of the current state (and the checkpoint) at the current time.
+  void write(Simulation<D>& sim, int index);
+
+  // The summary of a finished or stopped run.
+  nlohmann::json summary(const Simulation<D>& sim, bool completed, double wall_seconds,
+                         int threads, const std::string& error) const;
+
+  const std::filesystem::path& dir() const { return dir_; }
+
+ private:
+  const CaseSpec& spec_;
+  std::filesystem::path dir_;
+  PvdCollection pvd_;
+  SeriesWriter series_;
+};
+
+}  // namespace vrsph
