@@ -54,6 +54,10 @@ int dispatch(int argc, char** argv) {
   run->add_flag("--force", force, "overwrite an earlier run in the output folder");
   run->add_option("--cells-per-support", cells, "neighbour cells per 2h (1 full, 2 half)")
       ->check(CLI::Range(1, 4));
+  int halt_after = -1;
+  run->add_option("--halt-after-output", halt_after,
+                  "testing aid: stop abruptly right after writing snapshot K (as a kill would)")
+      ->group("");  // hidden from --help
 
   CLI::App* check = app.add_subcommand("check", "validate a case and report particle counts and dt");
   check->add_option("case", case_path, "case file (TOML)")->required();
@@ -88,6 +92,7 @@ int dispatch(int argc, char** argv) {
   ro.quiet = quiet;
   ro.force = force;
   ro.cells_per_support = cells;
+  ro.halt_after_output = halt_after;
   if (!resume_dir.empty()) {
     if (!case_path.empty()) throw CaseError("run: give either a case file or --resume DIR, not both");
     check_resume_overrides(sets);

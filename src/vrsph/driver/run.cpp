@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "vrsph/driver/checkpoint.hpp"
 #include "vrsph/driver/run_outputs.hpp"
@@ -101,7 +102,11 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
       const double elapsed = seconds_since(t0);
       sim.counters().wall_seconds = wall_before + elapsed;
       const bool at_end = sim.time() >= spec.end_time - eps_t;
-      if (at_end || sim.time() >= output_time(spec, index) - eps_t) out.write(sim, index++);
+      if (at_end || sim.time() >= output_time(spec, index) - eps_t) {
+        out.write(sim, index);
+        if (index == opt.halt_after_output) std::_Exit(kExitHalted);
+        ++index;
+      }
       progress.update(sim.time(), static_cast<long>(sim.step_count()),
                       elapsed > 0 ? sim.step_count() / elapsed : 0.0);
     }

@@ -15,6 +15,7 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUnstable = 2;
 inline constexpr int kExitIoError = 3;
+inline constexpr int kExitHalted = 9;  // --halt-after-output (tests only)
 
 struct RunOptions {
   std::filesystem::path out_dir;
@@ -23,6 +24,7 @@ struct RunOptions {
   bool force = false;     // overwrite an existing run in out_dir
   bool resume = false;    // continue from out_dir/checkpoint.bin
   int cells_per_support = 2;
+  int halt_after_output = -1;  // testing aid: exit abruptly after snapshot K, as a kill would
 };
 
 // Runs a validated case (or resumes one). Prints a one-line reason on stderr on failure and
