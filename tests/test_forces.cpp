@@ -1,0 +1,380 @@
+// The force pass (solver/forces.cpp) on jittered clouds, 2D and 3D: momentum conservation of the
+// antisymmetric pair terms (pressure, laminar and artificial viscosity), antisymmetry of Molteni
+// diffusion, the sign of diffusion, Fourtakas removing the hydrostatic part, walls skipped by
+// diffusion, ForceStats (pairs, max |a|, viscous dt measure) against brute force, and a Simulation
+// whose results are bit-identical for 1 and 2 threads.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <random>
+#include <type_traits>
+#include <vector>
+
+#include "vrsph/particles/cell_grid.hpp"
+#include "vrsph/solver/forces.hpp"
+#include "vrsph/solver/params.hpp"
+#include "vrsph/solver/simulation.hpp"
+
+namespace vrsph {
+namespace {
+
+constexpr double kRho0 = 1000.0;
+
+template <int D>
+SolverParams<D> make_params(double dp, ViscosityModel vm, DiffusionModel dm) {
+  SolverParams<D> prm;
+  const double c0 = 10.0;
+  prm.dp = dp;
+  prm.h = 1.3 * dp;
+  prm.eta2 = 0.01 * prm.h * prm.h;
+  prm.kernel = WendlandC2<D>(prm.h);
+  prm.eos = TaitEos(kRho0, 7.0, c0);
+  prm.mass = kRho0 * std::pow(dp, D);
+  prm.viscosity = vm;
+  prm.nu = vm == ViscosityModel::laminar ? 1e-3 : 0.0;  // large, so the term is not negligible
+  prm.alpha_c0_h = 0.1 * c0 * prm.h;
+  prm.diffusion = dm;
+  prm.two_delta_h_c0 = 2.0 * 0.1 * prm.h * c0;
+  return prm;
+}
+
+struct CloudOptions {
+  double vel = 0.5;          // velocity components uniform in [-vel, vel]
+  double rho_jitter = 0.01;  // relative density perturbation
+  double mass_jitter = 0.0;  // relative mass perturbation
+  int wall_layers = 0;       // wall layers below the fluid (vertical axis)
+};
+
+// An n^D lattice of fluid particles jittered by up to 0.2 dp, optionally on wall layers.
+template <int D>
+struct Cloud {
+  SolverParams<D> prm;
+  ParticleSet<D> ps;
+  CellGrid<D> grid;
+};
+
+template <int D>
+Cloud<D> make_cloud(int n, ViscosityModel vm, DiffusionModel dm, const CloudOptions& o,
+                    std::uint64_t seed) {
+  const double dp = 0.01;
+  Cloud<D> c;
+  c.prm = make_params<D>(dp, vm, dm);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int nz = D == 3 ? n : 1;
+  const int vert = vertical_axis<D>();
+  std::uint64_t id = 0;
+  for (int cz = 0; cz < nz; ++cz)
+    for (int b = -o.wall_layers; b < n; ++b)
+      for (int a = 0; a < n; ++a) {
+        int idx[3] = {a, b, cz};
+        if constexpr (D == 3) std::swap(idx[1], idx[2]);  // b runs along z in 3D
+        const bool wall = idx[vert] < 0;
+        Vec<D> x, v;
+        for (int k = 0; k < D; ++k) {
+          x[k] = (idx[k] + 0.5) * dp + (wall ? 0.0 : 0.2 * dp * u(rng));
+          v[k] = wall ? 0.0 : o.vel * u(rng);
+        }
+        const double rho = kRho0 * (1.0 + (wall ? 0.0 : o.rho_jitter * u(rng)));
+        const double m = c.prm.mass * (1.0 + o.mass_jitter * u(rng));
+        c.ps.push_back(id++, wall ? Kind::wall : Kind::fluid, x, v, rho, m);
+      }
+  Vec<D> lo, hi;
+  for (int k = 0; k < D; ++k) {
+    lo[k] = -(o.wall_layers + 1) * dp;
+    hi[k] = (n + 1) * dp;
+  }
+  c.grid = CellGrid<D>(lo, hi, c.prm.kernel.support(), 2);
+  EXPECT_TRUE(c.grid.sort(c.ps).empty());
+  return c;
+}
+
+template <class T>
+class ForcesTest : public ::testing::Test {};
+using Dims = ::testing::Types<std::integral_constant<int, 2>, std::integral_constant<int, 3>>;
+TYPED_TEST_SUITE(ForcesTest, Dims);
+
+template <int D>
+int side() {
+  return D == 2 ? 20 : 9;
+}
+
+template <int D>
+void expect_momentum_conserved(Cloud<D>& c, const char* what) {
+  compute_forces(c.prm, c.ps, c.grid);
+  Vec<D> total{};
+  double scale = 0.0;
+  for (std::size_t i = 0; i < c.ps.size(); ++i) {
+    total += c.ps.mass[i] * c.ps.acc[i];
+    scale += c.ps.mass[i] * norm(c.ps.acc[i]);
+  }
+  ASSERT_GT(scale, 0.0) << what;
+  std::printf("[ forces %dD ] %s: |sum m a| / sum m |a| = %.2e\n", D, what, norm(total) / scale);
+  EXPECT_LT(norm(total), 1e-13 * scale)
+      << what << ": |sum m a| / sum m |a| = " << norm(total) / scale;
+}
+
+TYPED_TEST(ForcesTest, PairTermsConserveMomentum) {
+  constexpr int D = TypeParam::value;
+  for (ViscosityModel vm : {ViscosityModel::laminar, ViscosityModel::artificial}) {
+    const char* name = vm == ViscosityModel::laminar ? "laminar" : "artificial";
+    // Pressure and viscosity together, unequal masses.
+    Cloud<D> c = make_cloud<D>(side<D>(), vm, DiffusionModel::none, {0.5, 0.01, 0.05, 0}, 11);
+    expect_momentum_conserved(c, name);
+    // Viscosity alone: rho = rho0 everywhere, so p = 0.
+    Cloud<D> v = make_cloud<D>(side<D>(), vm, DiffusionModel::none, {0.5, 0.0, 0.05, 0}, 12);
+    expect_momentum_conserved(v,
+                              vm == ViscosityModel::laminar ? "laminar only" : "artificial only");
+  }
+}
+
+// D_i = sum_j 2 delta h c0 V_j (rho_i - rho_j) F r^2/(r^2 + eta^2): sum_i V_i D_i = 0.
+TYPED_TEST(ForcesTest, MolteniDiffusionIsAntisymmetric) {
+  constexpr int D = TypeParam::value;
+  for (double vel : {0.0, 0.5}) {
+    Cloud<D> c = make_cloud<D>(side<D>(), ViscosityModel::laminar, DiffusionModel::none,
+                               {vel, 0.01, 0.0, 0}, 21);
+    compute_forces(c.prm, c.ps, c.grid);
+    const std::vector<double> none = c.ps.drho;
+    c.prm.diffusion = DiffusionModel::molteni;
+    compute_forces(c.prm, c.ps, c.grid);
+    double total = 0.0, scale = 0.0, rounding = 0.0;
+    for (std::size_t i = 0; i < c.ps.size(); ++i) {
+      const double vol = c.ps.mass[i] / c.ps.rho[i];
+      const double d = c.ps.drho[i] - none[i];
+      total += vol * d;
+      scale += vol * std::abs(d);
+      rounding += vol * (std::abs(c.ps.drho[i]) + std::abs(none[i]));
+    }
+    ASSERT_GT(scale, 0.0);
+    std::printf("[ forces %dD ] molteni (v = %.1f): |sum V D| / sum V |D| = %.2e\n", D, vel,
+                std::abs(total) / scale);
+    EXPECT_LT(std::abs(total), 1e-13 * scale + 1e-14 * rounding) << "vel = " << vel;
+  }
+}
+
+// A particle denser than its neighbours loses density, and they gain it.
+TYPED_TEST(ForcesTest, MolteniDiffusionSmoothsDensity) {
+  constexpr int D = TypeParam::value;
+  Cloud<D> c = make_cloud<D>(side<D>(), ViscosityModel::laminar, DiffusionModel::molteni,
+                             {0.0, 0.0, 0.0, 0}, 31);
+  const std::size_t k = c.ps.size() / 2;
+  c.ps.rho[k] = 1.01 * kRho0;
+  compute_forces(c.prm, c.ps, c.grid);
+  EXPECT_LT(c.ps.drho[k], 0.0);
+  int gained = 0;
+  for (std::size_t j = 0; j < c.ps.size(); ++j) {
+    const double r2 = norm2(c.ps.pos[j] - c.ps.pos[k]);
+    if (j == k) continue;
+    if (r2 < c.prm.kernel.support2) {
+      EXPECT_GT(c.ps.drho[j], 0.0);
+      ++gained;
+    } else {
+      EXPECT_EQ(c.ps.drho[j], 0.0);
+    }
+  }
+  EXPECT_GT(gained, 5);
+}
+
+// Hydrostatic column (v = 0, rho from the EOS at depth): Fourtakas' term cancels the hydrostatic
+// density difference to first order in k z = rho0 g z / B, so what is left is a fraction ~ k H of
+// Molteni's term (large at the free surface and the bottom, where the support is one-sided), and
+// that fraction falls as 1/c0^2.
+template <int D>
+double fourtakas_over_molteni(double c0_factor) {
+  const int vert = vertical_axis<D>();
+  Cloud<D> c = make_cloud<D>(side<D>(), ViscosityModel::laminar, DiffusionModel::none,
+                             {0.0, 0.0, 0.0, 0}, 41);
+  double top = -1e300, bottom = 1e300;
+  for (const auto& x : c.ps.pos) {
+    top = std::max(top, x[vert]);
+    bottom = std::min(bottom, x[vert]);
+  }
+  const double g = 9.81, c0 = c0_factor * std::sqrt(g * (top - bottom));
+  c.prm.eos = TaitEos(kRho0, 7.0, c0);
+  c.prm.two_delta_h_c0 = 2.0 * 0.1 * c.prm.h * c0;
+  c.prm.gravity[vert] = -g;
+  c.prm.up[vert] = 1.0;
+  c.prm.rho0_g_over_b = kRho0 * g / c.prm.eos.b;
+  for (std::size_t i = 0; i < c.ps.size(); ++i) {
+    c.ps.rho[i] = c.prm.eos.density(kRho0 * g * (top - c.ps.pos[i][vert]));
+  }
+  std::map<DiffusionModel, std::vector<double>> d;
+  for (DiffusionModel dm :
+       {DiffusionModel::none, DiffusionModel::molteni, DiffusionModel::fourtakas}) {
+    c.prm.diffusion = dm;
+    compute_forces(c.prm, c.ps, c.grid);
+    d[dm] = c.ps.drho;
+  }
+  double max_m = 0.0, max_f = 0.0;
+  for (std::size_t i = 0; i < c.ps.size(); ++i) {
+    max_m = std::max(max_m, std::abs(d[DiffusionModel::molteni][i] - d[DiffusionModel::none][i]));
+    max_f = std::max(max_f, std::abs(d[DiffusionModel::fourtakas][i] - d[DiffusionModel::none][i]));
+  }
+  EXPECT_GT(max_m, 0.0);
+  return max_f / max_m;
+}
+
+TYPED_TEST(ForcesTest, FourtakasRemovesHydrostaticPart) {
+  constexpr int D = TypeParam::value;
+  // c0 = 20 sqrt(g H) (PHYSICS.md): k H = gamma / 400 ~ 1.75e-2.
+  const double r20 = fourtakas_over_molteni<D>(20.0);
+  const double r40 = fourtakas_over_molteni<D>(40.0);
+  std::printf(
+      "[ forces %dD ] hydrostatic: |D_fourtakas| / |D_molteni| = %.2e (c0 = 20 sqrt(gH)), "
+      "%.2e (40 sqrt(gH))\n",
+      D, r20, r40);
+  EXPECT_LT(r20, 0.05);
+  EXPECT_GT(r20, 0.0);
+  EXPECT_NEAR(r40 / r20, 0.25, 0.05);  // second-order residual
+}
+
+// Diffusion skips wall neighbours: with v = 0, the fluid density rates do not depend on the wall
+// densities (the pressure of the walls does change the accelerations).
+TYPED_TEST(ForcesTest, DiffusionIgnoresWallDensity) {
+  constexpr int D = TypeParam::value;
+  for (DiffusionModel dm : {DiffusionModel::molteni, DiffusionModel::fourtakas}) {
+    Cloud<D> c = make_cloud<D>(side<D>(), ViscosityModel::artificial, dm, {0.0, 0.01, 0.0, 3}, 51);
+    c.prm.rho0_g_over_b = kRho0 * 9.81 / c.prm.eos.b;
+    c.prm.up[vertical_axis<D>()] = 1.0;
+    compute_forces(c.prm, c.ps, c.grid);
+    const auto drho = c.ps.drho;
+    const auto acc = c.ps.acc;
+    for (std::size_t i = 0; i < c.ps.size(); ++i) {
+      if (c.ps.kind[i] == Kind::wall) c.ps.rho[i] = 1.02 * kRho0;
+    }
+    compute_forces(c.prm, c.ps, c.grid);
+    bool acc_changed = false;
+    for (std::size_t i = 0; i < c.ps.size(); ++i) {
+      if (c.ps.kind[i] == Kind::wall) continue;
+      EXPECT_EQ(c.ps.drho[i], drho[i]) << "fluid particle " << c.ps.id[i];
+      acc_changed = acc_changed || !(c.ps.acc[i] == acc[i]);
+    }
+    EXPECT_TRUE(acc_changed);
+  }
+}
+
+// ForceStats against brute force: ordered pairs (i != j) within 2h except wall-wall, max |a| over
+// fluid, max v_ij . r_ij / (r^2 + eta^2) over the evaluated pairs. Walls get acc = 0.
+TYPED_TEST(ForcesTest, StatsMatchBruteForce) {
+  constexpr int D = TypeParam::value;
+  Cloud<D> c = make_cloud<D>(side<D>(), ViscosityModel::artificial, DiffusionModel::molteni,
+                             {0.5, 0.01, 0.0, 3}, 61);
+  const ForceStats st = compute_forces(c.prm, c.ps, c.grid);
+  const auto& ps = c.ps;
+  std::uint64_t pairs = 0;
+  double max_visc = -1e300, max_acc = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.kind[i] == Kind::wall) {
+      EXPECT_EQ(norm2(ps.acc[i]), 0.0);
+    } else {
+      max_acc = std::max(max_acc, norm(ps.acc[i]));
+    }
+    for (std::size_t j = 0; j < ps.size(); ++j) {
+      if (j == i || (ps.kind[i] == Kind::wall && ps.kind[j] == Kind::wall)) continue;
+      const Vec<D> r_ij = ps.pos[i] - ps.pos[j];
+      const double r2 = norm2(r_ij);
+      if (r2 >= c.prm.kernel.support2) continue;
+      ++pairs;
+      max_visc = std::max(max_visc, dot(ps.vel[i] - ps.vel[j], r_ij) / (r2 + c.prm.eta2));
+    }
+  }
+  EXPECT_GT(ps.count(Kind::wall), 0u);
+  EXPECT_EQ(st.pairs, pairs);
+  EXPECT_NEAR(st.max_acc, max_acc, 1e-12 * max_acc);
+  EXPECT_NEAR(st.max_visc_dt, max_visc, 1e-12 * std::abs(max_visc));
+}
+
+// A small dam break stepped with 1 and 2 threads from the same start: bit-identical states.
+template <int D>
+CaseSpec dam_break_spec() {
+  CaseSpec s;
+  s.name = "thread_check";
+  s.dimension = D;
+  s.gravity = {0.0, 0.0, 0.0};
+  s.gravity[static_cast<std::size_t>(vertical_axis<D>())] = -9.81;
+  s.viscosity = ViscosityModel::artificial;
+  s.artificial_alpha = 0.1;
+  s.density_diffusion = DiffusionModel::fourtakas;
+  FluidBlock f;
+  f.shape = BlockShape::box;
+  WallBlock w;
+  w.shape = WallShape::tank;
+  w.layers = 3;
+  if constexpr (D == 2) {
+    s.dp = 0.01;
+    f.min = {0.01, 0.01, 0.0};
+    f.max = {0.4, 0.4, 0.0};
+    w.min = {0.0, 0.0, 0.0};
+    w.max = {1.0, 0.6, 0.0};
+  } else {
+    s.dp = 0.02;
+    f.min = {0.02, 0.02, 0.02};
+    f.max = {0.16, 0.1, 0.16};
+    w.min = {0.0, 0.0, 0.0};
+    w.max = {0.24, 0.12, 0.2};
+  }
+  f.velocity = {1.0, 0.0, 0.0};  // sliding over the bottom: fluid-wall pairs with v_ij != 0
+  s.fluid_blocks = {f};
+  s.wall_blocks = {w};
+  return s;
+}
+
+struct State {
+  std::vector<double> values;  // x, v, rho per particle, ordered by id
+};
+
+template <int D>
+State run_with_threads(int threads, int steps, std::size_t& n_particles, double& moved) {
+  omp_set_num_threads(threads);
+  CaseSpec spec = dam_break_spec<D>();
+  Simulation<D> sim(spec);
+  std::map<std::uint64_t, Vec<D>> start;
+  for (std::size_t i = 0; i < sim.particles().size(); ++i) {
+    start[sim.particles().id[i]] = sim.particles().pos[i];
+  }
+  for (int s = 0; s < steps; ++s) sim.step();
+  const auto& ps = sim.particles();
+  n_particles = ps.size();
+  std::map<std::uint64_t, std::size_t> by_id;
+  for (std::size_t i = 0; i < ps.size(); ++i) by_id[ps.id[i]] = i;
+  State st;
+  moved = 0.0;
+  for (const auto& [id, i] : by_id) {
+    for (int k = 0; k < D; ++k) st.values.push_back(ps.pos[i][k]);
+    for (int k = 0; k < D; ++k) st.values.push_back(ps.vel[i][k]);
+    st.values.push_back(ps.rho[i]);
+    moved = std::max(moved, norm(ps.pos[i] - start.at(id)));
+  }
+  return st;
+}
+
+TYPED_TEST(ForcesTest, SimulationIndependentOfThreadCount) {
+  constexpr int D = TypeParam::value;
+  const int steps = D == 2 ? 20 : 5;
+  const int saved = omp_get_max_threads();
+  std::size_t n1 = 0, n = 0;
+  double moved = 0.0, moved_n = 0.0;
+  const State one = run_with_threads<D>(1, steps, n1, moved);
+  std::printf("[ forces %dD ] thread check: %zu particles, %d steps, max displacement %.3g m\n", D,
+              n1, steps, moved);
+  EXPECT_GT(n1, 1500u);
+  EXPECT_LT(n1, 4000u);
+  EXPECT_GT(moved, 0.0);
+  for (int threads : {2}) {
+    const State many = run_with_threads<D>(threads, steps, n, moved_n);
+    ASSERT_EQ(n, n1);
+    ASSERT_EQ(many.values.size(), one.values.size());
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < one.values.size(); ++k)
+      differ += !(many.values[k] == one.values[k]);
+    EXPECT_EQ(differ, 0u) << threads << " threads: " << differ << " values differ";
+  }
+  omp_set_num_threads(saved);
+}
+
+}  // namespace
+}  // namespace vrsph
