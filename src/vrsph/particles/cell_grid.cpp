@@ -71,13 +71,14 @@ std::int64_t CellGrid<D>::cell_of(const Vec<D>& x) const {
 }
 
 namespace {
+// Gathers a through perm into scratch. Called inside a parallel region: the loop is shared
+// among the threads, and the caller swaps a and scratch after the region's barrier.
 template <class T>
-void permute(std::vector<T>& a, const std::vector<std::uint32_t>& perm, std::vector<T>& scratch) {
-  scratch.resize(perm.size());
+void permute_into(const std::vector<T>& a, const std::vector<std::uint32_t>& perm,
+                  std::vector<T>& scratch) {
   const auto n = static_cast<std::int64_t>(perm.size());
-#pragma omp parallel for schedule(static)
+#pragma omp for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) scratch[i] = a[perm[i]];
-  a.swap(scratch);
 }
 }  // namespace
 
@@ -111,18 +112,38 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
     if (pcell_[i] < 0) continue;
     perm_[--begin_[key(pcell_[i], ps.kind[i])]] = static_cast<std::uint32_t>(i);
   }
-  permute(ps.id, perm_, id_scratch_);
-  permute(ps.kind, perm_, kind_scratch_);
-  // The scratch buffers are members: after each swap they hold the previous array's storage, so
-  // sorting allocates nothing once the sizes have settled.
-  permute(ps.pos, perm_, vec_scratch_);
-  permute(ps.vel, perm_, vec_scratch_);
-  permute(ps.pos0, perm_, vec_scratch_);
-  permute(ps.vel0, perm_, vec_scratch_);
-  permute(ps.rho, perm_, dbl_scratch_);
-  permute(ps.mass, perm_, dbl_scratch_);
-  permute(ps.rho0, perm_, dbl_scratch_);
-  permute(pcell_, perm_, cell_scratch_);
+  // One parallel region gathers every array through the permutation; the scratch arrays are
+  // members, and after the swap they hold the previous storage, so nothing is allocated once
+  // the sizes have settled.
+  for (auto* v : {&vec_scratch_[0], &vec_scratch_[1], &vec_scratch_[2], &vec_scratch_[3]})
+    v->resize(kept);
+  for (auto* v : {&dbl_scratch_[0], &dbl_scratch_[1], &dbl_scratch_[2]}) v->resize(kept);
+  id_scratch_.resize(kept);
+  kind_scratch_.resize(kept);
+  cell_scratch_.resize(kept);
+#pragma omp parallel
+  {
+    permute_into(ps.id, perm_, id_scratch_);
+    permute_into(ps.kind, perm_, kind_scratch_);
+    permute_into(ps.pos, perm_, vec_scratch_[0]);
+    permute_into(ps.vel, perm_, vec_scratch_[1]);
+    permute_into(ps.pos0, perm_, vec_scratch_[2]);
+    permute_into(ps.vel0, perm_, vec_scratch_[3]);
+    permute_into(ps.rho, perm_, dbl_scratch_[0]);
+    permute_into(ps.mass, perm_, dbl_scratch_[1]);
+    permute_into(ps.rho0, perm_, dbl_scratch_[2]);
+    permute_into(pcell_, perm_, cell_scratch_);
+  }
+  ps.id.swap(id_scratch_);
+  ps.kind.swap(kind_scratch_);
+  ps.pos.swap(vec_scratch_[0]);
+  ps.vel.swap(vec_scratch_[1]);
+  ps.pos0.swap(vec_scratch_[2]);
+  ps.vel0.swap(vec_scratch_[3]);
+  ps.rho.swap(dbl_scratch_[0]);
+  ps.mass.swap(dbl_scratch_[1]);
+  ps.rho0.swap(dbl_scratch_[2]);
+  pcell_.swap(cell_scratch_);
   // Derived fields (p, acc, drho) are recomputed after every sort: only resize them.
   ps.p.resize(kept);
   ps.acc.resize(kept);

@@ -18,7 +18,8 @@ struct NeighbourArrays {
   std::array<std::vector<double>, D> x, v;
   std::vector<double> rho, p, vol, mass;
 
-  void pack(const ParticleSet<D>& ps) {
+  // Copies the particle fields and fills ps.p from the EOS on the way.
+  void pack(ParticleSet<D>& ps, const TaitEos& eos) {
     const std::size_t n = ps.size();
     for (int k = 0; k < D; ++k) {
       x[k].resize(n);
@@ -35,10 +36,68 @@ struct NeighbourArrays {
         v[k][i] = ps.vel[i][k];
       }
       rho[i] = ps.rho[i];
+      ps.p[i] = eos.pressure(ps.rho[i]);
       p[i] = ps.p[i];
       vol[i] = ps.mass[i] / ps.rho[i];
       mass[i] = ps.mass[i];
     }
+  }
+};
+
+// Candidates of one cell's particles, copied from the runs of the cell stencil into one
+// contiguous block padded to a multiple of kPad with inert dummies (far away, zero volume and
+// mass), so that every particle of the cell sweeps a single vector loop with no remainder.
+// All particles of a cell share the block: the copy is amortised over them.
+constexpr std::size_t kPad = 8;
+
+template <int D>
+struct Candidates {
+  NeighbourArrays<D> a;
+  std::size_t len = 0;          // padded length
+  std::int64_t cell = -1;       // cell the block was gathered for
+  Group group = Group::fluid;
+
+  void gather(const NeighbourArrays<D>& nb, const CellGrid<D>& grid, std::int64_t c, Group g) {
+    if (c == cell && g == group) return;
+    cell = c;
+    group = g;
+    std::size_t n = 0;
+    grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) { n += e - b; });
+    len = (n + kPad - 1) / kPad * kPad;
+    if (a.rho.size() < len) grow(len);
+    std::size_t k = 0;
+    grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) {
+      for (int d = 0; d < D; ++d) {
+        std::copy(nb.x[d].begin() + b, nb.x[d].begin() + e, a.x[d].begin() + k);
+        std::copy(nb.v[d].begin() + b, nb.v[d].begin() + e, a.v[d].begin() + k);
+      }
+      std::copy(nb.rho.begin() + b, nb.rho.begin() + e, a.rho.begin() + k);
+      std::copy(nb.p.begin() + b, nb.p.begin() + e, a.p.begin() + k);
+      std::copy(nb.vol.begin() + b, nb.vol.begin() + e, a.vol.begin() + k);
+      std::copy(nb.mass.begin() + b, nb.mass.begin() + e, a.mass.begin() + k);
+      k += e - b;
+    });
+    for (; k < len; ++k) {  // dummies: outside every support, and zero in every term
+      for (int d = 0; d < D; ++d) {
+        a.x[d][k] = 1e15;
+        a.v[d][k] = 0.0;
+      }
+      a.rho[k] = 1.0;
+      a.p[k] = 0.0;
+      a.vol[k] = 0.0;
+      a.mass[k] = 0.0;
+    }
+  }
+
+  void grow(std::size_t n) {
+    for (int d = 0; d < D; ++d) {
+      a.x[d].resize(n);
+      a.v[d].resize(n);
+    }
+    a.rho.resize(n);
+    a.p.resize(n);
+    a.vol.resize(n);
+    a.mass.resize(n);
   }
 };
 
@@ -56,7 +115,7 @@ struct Accum {
 // Fourtakas "full" variant). kSeries: the Fourtakas hydrostatic term may use its series form.
 template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall>
 inline void fluid_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, std::uint32_t i,
-                      std::uint32_t b, std::uint32_t e, Accum& a) {
+                      const Candidates<D>& cand, Accum& a) {
   double xi[3] = {}, vi[3] = {};
   for (int k = 0; k < D; ++k) {
     xi[k] = nb.x[k][i];
@@ -66,18 +125,18 @@ inline void fluid_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, 
   const double inv_rho_i = 1.0 / rho_i;
   const double support2 = prm.kernel.support2, inv_h = prm.kernel.inv_h;
   const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
-  // Pointers to the start of the run, so the loop index is a plain unit-stride offset.
-  const double* xj0 = nb.x[0].data() + b;
-  const double* xj1 = nb.x[1].data() + b;
-  const double* xj2 = nb.x[D - 1].data() + b;
-  const double* vj0 = nb.v[0].data() + b;
-  const double* vj1 = nb.v[1].data() + b;
-  const double* vj2 = nb.v[D - 1].data() + b;
-  const double* rho = nb.rho.data() + b;
-  const double* p = nb.p.data() + b;
-  const double* vol = nb.vol.data() + b;
-  const double* mass = nb.mass.data() + b;
-  const std::ptrdiff_t len = static_cast<std::ptrdiff_t>(e) - static_cast<std::ptrdiff_t>(b);
+  const NeighbourArrays<D>& c = cand.a;
+  const double* xj0 = c.x[0].data();
+  const double* xj1 = c.x[1].data();
+  const double* xj2 = c.x[D - 1].data();
+  const double* vj0 = c.v[0].data();
+  const double* vj1 = c.v[1].data();
+  const double* vj2 = c.v[D - 1].data();
+  const double* rho = c.rho.data();
+  const double* p = c.p.data();
+  const double* vol = c.vol.data();
+  const double* mass = c.mass.data();
+  const auto len = static_cast<std::ptrdiff_t>(cand.len);
   double ax = 0.0, ay = 0.0, az = 0.0, drho = 0.0, vdt = -1e300, npair = 0.0;
 #pragma omp simd reduction(+ : ax, ay, az, drho, npair) reduction(max : vdt)
   for (std::ptrdiff_t j = 0; j < len; ++j) {
@@ -131,7 +190,7 @@ inline void fluid_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, 
 // Continuity of wall particle i over the fluid candidates [b, e) (dynamic boundary).
 template <int D>
 inline void wall_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, std::uint32_t i,
-                     std::uint32_t b, std::uint32_t e, Accum& a) {
+                     const Candidates<D>& cand, Accum& a) {
   double xi[3] = {}, vi[3] = {};
   for (int k = 0; k < D; ++k) {
     xi[k] = nb.x[k][i];
@@ -140,14 +199,15 @@ inline void wall_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, s
   const double rho_i = nb.rho[i];
   const double support2 = prm.kernel.support2, inv_h = prm.kernel.inv_h;
   const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
-  const double* xj0 = nb.x[0].data() + b;
-  const double* xj1 = nb.x[1].data() + b;
-  const double* xj2 = nb.x[D - 1].data() + b;
-  const double* vj0 = nb.v[0].data() + b;
-  const double* vj1 = nb.v[1].data() + b;
-  const double* vj2 = nb.v[D - 1].data() + b;
-  const double* vol = nb.vol.data() + b;
-  const std::ptrdiff_t len = static_cast<std::ptrdiff_t>(e) - static_cast<std::ptrdiff_t>(b);
+  const NeighbourArrays<D>& c = cand.a;
+  const double* xj0 = c.x[0].data();
+  const double* xj1 = c.x[1].data();
+  const double* xj2 = c.x[D - 1].data();
+  const double* vj0 = c.v[0].data();
+  const double* vj1 = c.v[1].data();
+  const double* vj2 = c.v[D - 1].data();
+  const double* vol = c.vol.data();
+  const auto len = static_cast<std::ptrdiff_t>(cand.len);
   double drho = 0.0, vdt = -1e300, npair = 0.0;
 #pragma omp simd reduction(+ : drho, npair) reduction(max : vdt)
   for (std::ptrdiff_t j = 0; j < len; ++j) {
@@ -176,21 +236,20 @@ ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
   const auto n = static_cast<std::int64_t>(ps.size());
   double max_visc_dt = -1e300, max_acc2 = 0.0;
   std::uint64_t pairs = 0;
-#pragma omp parallel for schedule(dynamic, 512) reduction(max : max_visc_dt, max_acc2) \
-    reduction(+ : pairs)
+#pragma omp parallel reduction(max : max_visc_dt, max_acc2) reduction(+ : pairs)
+  {
+    Candidates<D> fluid_cand, wall_cand;  // per thread
+#pragma omp for schedule(dynamic, 512)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::uint32_t>(ii);
     Accum a;
+    fluid_cand.gather(nb, grid, cells[i], Group::fluid);
     if (ps.kind[i] == Kind::wall) {
-      grid.for_each_run(cells[i], Group::fluid,
-                        [&](std::uint32_t b, std::uint32_t e) { wall_run(prm, nb, i, b, e, a); });
+      wall_run(prm, nb, i, fluid_cand, a);
     } else {
-      grid.for_each_run(cells[i], Group::fluid, [&](std::uint32_t b, std::uint32_t e) {
-        fluid_run<D, VM, DM, false>(prm, nb, i, b, e, a);
-      });
-      grid.for_each_run(cells[i], Group::wall, [&](std::uint32_t b, std::uint32_t e) {
-        fluid_run<D, VM, DM, true>(prm, nb, i, b, e, a);
-      });
+      fluid_run<D, VM, DM, false>(prm, nb, i, fluid_cand, a);
+      wall_cand.gather(nb, grid, cells[i], Group::wall);
+      fluid_run<D, VM, DM, true>(prm, nb, i, wall_cand, a);
     }
     Vec<D> acc;
     for (int k = 0; k < D; ++k) acc[k] = a.acc[k];
@@ -199,6 +258,7 @@ ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     if (ps.kind[i] != Kind::wall) max_acc2 = std::max(max_acc2, norm2(acc));
     max_visc_dt = std::max(max_visc_dt, a.max_visc_dt);
     pairs += a.pairs;
+  }
   }
   return {max_visc_dt, std::sqrt(max_acc2), pairs};
 }
@@ -224,10 +284,8 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
   ps.p.resize(n);
   ps.acc.resize(n);
   ps.drho.resize(n);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) ps.p[i] = prm.eos.pressure(ps.rho[i]);
   static NeighbourArrays<D> nb;  // reused between calls: no allocation once sizes settle
-  nb.pack(ps);
+  nb.pack(ps, prm.eos);
   if (prm.viscosity == ViscosityModel::laminar) {
     return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, nb);
   }
