@@ -1,0 +1,344 @@
+// `vrsph run --resume DIR` (shared/CONTRACT.md "Command line"; README: "--resume continues from
+// the checkpoint and reaches the same final state, bit for bit, as an uninterrupted run with the
+// same thread count"). A run is stopped abruptly with the hidden testing option
+// `--halt-after-output K` (exit status 9 right after snapshot K, as a kill would), resumed, and
+// compared byte for byte with an uninterrupted run.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli_util.hpp"
+
+namespace {
+
+using namespace vrsph_cli;
+
+constexpr int kExitHalted = 9;
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+// Every snapshot in the pvd once, in order, with increasing times.
+void expect_clean_pvd(const fs::path& dir, std::size_t n) {
+  const auto pvd = read_pvd(dir / "particles.pvd");
+  ASSERT_EQ(pvd.size(), n) << read_text(dir / "particles.pvd");
+  std::set<std::string> files;
+  for (std::size_t k = 0; k < pvd.size(); ++k) {
+    EXPECT_EQ(pvd[k].file, snapshot(static_cast<int>(k), "vtp"));
+    files.insert(pvd[k].file);
+    if (k > 0) {
+      EXPECT_GT(pvd[k].time, pvd[k - 1].time);
+    }
+  }
+  EXPECT_EQ(files.size(), n);
+}
+
+// The deterministic part of summary.json (no timings) is the same.
+void expect_same_summary(const fs::path& a, const fs::path& b) {
+  const auto ja = nlohmann::json::parse(read_text(a / "summary.json"));
+  const auto jb = nlohmann::json::parse(read_text(b / "summary.json"));
+  for (const char* key :
+       {"completed", "steps", "sim_time", "n_particles", "threads", "lost_fluid", "dt_limits"}) {
+    EXPECT_EQ(ja.value(key, nlohmann::json()), jb.value(key, nlohmann::json())) << key;
+  }
+}
+
+// Snapshots 0..last of both folders are byte-identical (csv where written, and vtp), as are
+// series.csv and particles.pvd.
+void expect_same_outputs(const fs::path& a, const fs::path& b, int last, bool csv) {
+  for (int k = 0; k <= last; ++k) {
+    ASSERT_TRUE(fs::exists(b / snapshot(k, "vtp"))) << k;
+    EXPECT_TRUE(same_bytes(a / snapshot(k, "vtp"), b / snapshot(k, "vtp"))) << "snapshot " << k;
+    if (csv) {
+      EXPECT_TRUE(same_bytes(a / snapshot(k, "csv"), b / snapshot(k, "csv"))) << "snapshot " << k;
+    }
+  }
+  EXPECT_FALSE(fs::exists(b / snapshot(last + 1, "vtp")));
+  EXPECT_TRUE(same_bytes(a / "series.csv", b / "series.csv"));
+  EXPECT_TRUE(same_bytes(a / "particles.pvd", b / "particles.pvd"));
+  expect_clean_pvd(b, static_cast<std::size_t>(last + 1));
+  expect_same_summary(a, b);
+}
+
+// 2D dam break at dp = 0.04 m to 20 ms, a snapshot every 5 ms: snapshots 0..4, 172 steps.
+std::vector<std::string> dam_break_20ms(const fs::path& out) {
+  return tiny_dam_break(out, 0.02, 0.005);
+}
+
+TEST(Restart, HaltedRunResumesToTheSameBytes2D) {
+  TempDir dir;
+  const fs::path a = dir / "a", b = dir / "b";
+  const CmdResult ra = dir.run(dam_break_20ms(a));
+  ASSERT_EQ(ra.status, 0) << ra;
+
+  const CmdResult halted = dir.run(with(dam_break_20ms(b), {"--halt-after-output", "2"}));
+  ASSERT_EQ(halted.status, kExitHalted) << halted;
+  ASSERT_TRUE(fs::exists(b / snapshot(2, "csv")));
+  EXPECT_FALSE(fs::exists(b / snapshot(3, "csv"))) << "halted right after snapshot 2";
+  EXPECT_TRUE(fs::exists(b / "checkpoint.bin"));
+  EXPECT_EQ(read_lines(b / "series.csv").size(), 1u + 3u);
+  expect_clean_pvd(b, 3);
+
+  const CmdResult resumed = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1"});
+  ASSERT_EQ(resumed.status, 0) << resumed;
+  EXPECT_TRUE(resumed.err.empty()) << resumed;
+  expect_same_outputs(a, b, 4, true);
+  EXPECT_TRUE(same_bytes(a / "case.toml", b / "case.toml"));
+}
+
+TEST(Restart, HaltedTwiceResumesToTheSameBytes) {
+  // Halt after snapshot 1, resume and halt again after snapshot 3, resume to the end.
+  TempDir dir;
+  const fs::path a = dir / "a", b = dir / "b";
+  ASSERT_EQ(dir.run(dam_break_20ms(a)).status, 0);
+  const CmdResult h1 = dir.run(with(dam_break_20ms(b), {"--halt-after-output", "1"}));
+  ASSERT_EQ(h1.status, kExitHalted) << h1;
+  const CmdResult h2 = dir.run(
+      {"run", "--resume", b.string(), "--quiet", "--threads", "1", "--halt-after-output", "3"});
+  ASSERT_EQ(h2.status, kExitHalted) << h2;
+  EXPECT_FALSE(fs::exists(b / snapshot(4, "csv")));
+  const CmdResult r = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.status, 0) << r;
+  expect_same_outputs(a, b, 4, true);
+}
+
+TEST(Restart, ResumeDropsOutputsWrittenAfterTheCheckpoint) {
+  // A kill between a snapshot's files and its checkpoint leaves series rows and pvd entries newer
+  // than the checkpoint: here a finished run gets the checkpoint of snapshot 2 back. Resuming
+  // redoes snapshots 3 and 4 and lists each once.
+  TempDir dir;
+  const fs::path a = dir / "a", b = dir / "b", c = dir / "c";
+  ASSERT_EQ(dir.run(dam_break_20ms(a)).status, 0);
+  ASSERT_EQ(dir.run(with(dam_break_20ms(b), {"--halt-after-output", "2"})).status, kExitHalted);
+  ASSERT_EQ(dir.run(dam_break_20ms(c)).status, 0);
+  fs::copy_file(b / "checkpoint.bin", c / "checkpoint.bin", fs::copy_options::overwrite_existing);
+  fs::remove(c / "summary.json");
+  const CmdResult r = dir.run({"run", "--resume", c.string(), "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.status, 0) << r;
+  expect_same_outputs(a, c, 4, true);
+}
+
+TEST(Restart, LaterEndTimeContinuesAFinishedRun) {
+  TempDir dir;
+  const fs::path a = dir / "a";
+  ASSERT_EQ(dir.run(dam_break_20ms(a)).status, 0);
+  const auto series_before = read_lines(a / "series.csv");
+
+  // Resuming a finished run without a later end time: nothing to do, refused as bad input.
+  const CmdResult same = dir.run({"run", "--resume", a.string(), "--quiet", "--threads", "1"});
+  EXPECT_EQ(same.status, 1) << same;
+  ASSERT_EQ(same.err_lines().size(), 1u) << same;
+  EXPECT_NE(same.err.find("case.end_time"), std::string::npos) << same;
+  EXPECT_EQ(read_lines(a / "series.csv"), series_before);
+
+  const CmdResult more = dir.run(
+      {"run", "--resume", a.string(), "--quiet", "--threads", "1", "--set", "case.end_time=0.03"});
+  ASSERT_EQ(more.status, 0) << more;
+  const auto series = read_lines(a / "series.csv");
+  ASSERT_EQ(series.size(), 1u + 7u) << read_text(a / "series.csv");  // t = 0, 5, ..., 30 ms
+  for (std::size_t k = 0; k < series_before.size(); ++k) EXPECT_EQ(series[k], series_before[k]);
+  double last_t = -1.0;
+  for (std::size_t k = 1; k < series.size(); ++k) {
+    const double t = std::stod(split_csv(series[k])[0]);
+    EXPECT_GT(t, last_t);
+    last_t = t;
+  }
+  EXPECT_NEAR(last_t, 0.03, 1e-12);
+  expect_clean_pvd(a, 7);
+  EXPECT_TRUE(fs::exists(a / snapshot(6, "csv")));
+  const auto sj = nlohmann::json::parse(read_text(a / "summary.json"));
+  EXPECT_EQ(sj.at("completed"), true);
+  EXPECT_NEAR(sj.at("sim_time").get<double>(), 0.03, 1e-12);
+  EXPECT_NE(read_text(a / "case.toml").find("end_time = 0.03"), std::string::npos);
+}
+
+TEST(Restart, LaterEndTimeMatchesAnUninterruptedRun) {
+  // BUG (src/vrsph/solver/simulation.cpp, Simulation::step, "land on the end time"): the last
+  // step of a run is shortened so that it lands exactly on case.end_time, but output times are not
+  // landed on. A run to 20 ms therefore ends with a short step (t = 0.0199514 -> 0.02, dt 4.9e-5
+  // s) that an uninterrupted run to 30 ms never takes (it passes 20 ms at t = 0.0200675), so
+  // `vrsph run --resume A --set case.end_time=0.03` on a finished 20 ms run differs from a 30 ms
+  // run: particles_0006.csv differs from line 2 on, series.csv from the row t = 0.02 on (0.02 vs
+  // 0.020067491730186786), particles.pvd likewise. Expected: byte-identical (README: "--resume
+  // ... reaches the same final state, bit for bit, as an uninterrupted run"). A fix: clamp dt to
+  // the next output time too (so every run lands on 0.005, 0.01, ...), or checkpoint the state
+  // before the landing step.
+  GTEST_SKIP() << "src bug: extending a finished run is not bit-identical to an uninterrupted "
+                  "run (the last step is shortened to land on the old end time)";
+  TempDir dir;
+  const fs::path a = dir / "a", c = dir / "c";
+  ASSERT_EQ(dir.run(dam_break_20ms(a)).status, 0);
+  const CmdResult more = dir.run(
+      {"run", "--resume", a.string(), "--quiet", "--threads", "1", "--set", "case.end_time=0.03"});
+  ASSERT_EQ(more.status, 0) << more;
+  ASSERT_EQ(dir.run(tiny_dam_break(c, 0.03, 0.005)).status, 0);
+  expect_same_outputs(c, a, 6, true);
+}
+
+TEST(Restart, HaltedRunResumedToALaterEndTimeMatchesAnUninterruptedRun) {
+  // A run halted before its end never took the short step that lands on the end time, so
+  // resuming it to a later end time is the same as running there in one go.
+  TempDir dir;
+  const fs::path b = dir / "b", c = dir / "c";
+  ASSERT_EQ(dir.run(with(dam_break_20ms(b), {"--halt-after-output", "2"})).status, kExitHalted);
+  const CmdResult r = dir.run(
+      {"run", "--resume", b.string(), "--quiet", "--threads", "1", "--set", "case.end_time=0.03"});
+  ASSERT_EQ(r.status, 0) << r;
+  ASSERT_EQ(dir.run(tiny_dam_break(c, 0.03, 0.005)).status, 0);
+  expect_same_outputs(c, b, 6, true);
+  EXPECT_TRUE(same_bytes(c / "case.toml", b / "case.toml"));
+}
+
+TEST(Restart, NewOutputIntervalAppliesFromTheResumeTime) {
+  // BUG (src/vrsph/driver/run.cpp, run_impl/output_time): the next output time is
+  // output_time(spec, index) = index * output.interval with the snapshot index carried over from
+  // the checkpoint, so a changed interval is applied as if it had held from t = 0. Halting the
+  // 20 ms run after snapshot 2 (t = 0.01005) and resuming with `--set output.interval=0.0025`
+  // writes snapshots 3 and 4 at the very next two steps (t = 0.010169, 0.010286: index 3 and 4
+  // map to 7.5 ms and 10 ms, already past), then 12.5, 15, 17.5, 20 ms. Expected: snapshots
+  // every 2.5 ms from the resume time on (12.5, 15, 17.5, 20 ms), none at consecutive steps.
+  // Likewise a larger interval (0.008) maps index 3 to 24 ms and skips the snapshot near 16 ms.
+  GTEST_SKIP() << "src bug: resuming with a new output.interval writes snapshots at consecutive "
+                  "steps (snapshot index carried over, output time = index * interval)";
+  TempDir dir;
+  const fs::path b = dir / "b";
+  ASSERT_EQ(dir.run(with(dam_break_20ms(b), {"--halt-after-output", "2"})).status, kExitHalted);
+  const CmdResult r = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1", "--set",
+                               "output.interval=0.0025"});
+  ASSERT_EQ(r.status, 0) << r;
+  const auto series = read_lines(b / "series.csv");
+  ASSERT_EQ(series.size(), 1u + 3u + 4u) << read_text(b / "series.csv");
+  const double dt_max = 2e-4;  // about 1.2e-4 s per step here
+  for (int k = 0; k < 4; ++k) {
+    const double t = std::stod(split_csv(series[4 + k])[0]);
+    EXPECT_GE(t, 0.0125 + 0.0025 * k - 1e-12) << series[4 + k];
+    EXPECT_LE(t, 0.0125 + 0.0025 * k + dt_max) << series[4 + k];
+  }
+  expect_clean_pvd(b, 7);
+}
+
+TEST(Restart, PhysicalOverridesAreRefused) {
+  TempDir dir;
+  const fs::path b = dir / "b";
+  ASSERT_EQ(dir.run(with(dam_break_20ms(b), {"--halt-after-output", "1"})).status, kExitHalted);
+  const std::string case_before = read_text(b / "case.toml");
+  const std::string series_before = read_text(b / "series.csv");
+  for (const char* set : {"resolution.dp=0.05", "eos.sound_speed=50", "numerics.cfl=0.1",
+                          "fluid_block.0.max=[0.5, 1.0]"}) {
+    const CmdResult r =
+        dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1", "--set", set});
+    EXPECT_EQ(r.status, 1) << r;
+    const auto lines = r.err_lines();
+    ASSERT_EQ(lines.size(), 1u) << r;
+    const std::string key = std::string(set).substr(0, std::string(set).find('='));
+    EXPECT_NE(lines[0].find(key), std::string::npos) << r;
+    EXPECT_EQ(read_text(b / "case.toml"), case_before) << set;
+    EXPECT_EQ(read_text(b / "series.csv"), series_before) << set;
+  }
+  // A case file and --resume together are refused too.
+  const CmdResult both = dir.run({"run", dam_break_2d(), "--resume", b.string(), "--quiet"});
+  EXPECT_EQ(both.status, 1) << both;
+  EXPECT_EQ(both.err_lines().size(), 1u) << both;
+  // The folder can still be resumed afterwards.
+  const CmdResult ok = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1"});
+  EXPECT_EQ(ok.status, 0) << ok;
+}
+
+TEST(Restart, SpacedEndTimeOverrideIsAcceptedOnResume) {
+  // BUG (src/vrsph/app/main.cpp, check_resume_overrides): the key is taken as everything before
+  // '=' without trimming, so `--set "case.end_time = 0.03"` (accepted by every other command:
+  // `vrsph check CASE --set "resolution.dp = 0.04"` works) is refused on resume with exit 1 and
+  // the self-contradictory "--set case.end_time = 0.03: cannot change case.end_time  when resuming
+  // (only case.end_time and output.interval)". Expected: accepted like `case.end_time=0.03`.
+  GTEST_SKIP() << "src bug: resume refuses '--set \"case.end_time = T\"' (key not trimmed)";
+  TempDir dir;
+  const fs::path a = dir / "a";
+  ASSERT_EQ(dir.run(dam_break_20ms(a)).status, 0);
+  const CmdResult r = dir.run({"run", "--resume", a.string(), "--quiet", "--threads", "1", "--set",
+                               "case.end_time = 0.025"});
+  EXPECT_EQ(r.status, 0) << r;
+}
+
+TEST(Restart, FolderWithoutCheckpointFailsCleanly) {
+  TempDir dir;
+  // No such folder; an empty folder.
+  fs::create_directories(dir / "empty");
+  for (const char* d : {"missing", "empty"}) {
+    const CmdResult r = dir.run({"run", "--resume", (dir / d).string(), "--quiet"});
+    EXPECT_EQ(r.status, 1) << r;
+    EXPECT_EQ(r.err_lines().size(), 1u) << r;
+    EXPECT_NE(r.err.find(d), std::string::npos) << r;
+  }
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+  EXPECT_TRUE(fs::is_empty(dir / "empty"));
+
+  // A finished run whose checkpoint is gone, garbage or truncated: a one-line reason naming the
+  // checkpoint, a failure status (1 bad input or 3 I/O error), and the folder left as it was.
+  const fs::path a = dir / "a";
+  ASSERT_EQ(dir.run(tiny_dam_break(a, 0.005, 0.005)).status, 0);
+  const std::string checkpoint = read_text(a / "checkpoint.bin");
+  ASSERT_GT(checkpoint.size(), 1000u);
+  const std::string case_before = read_text(a / "case.toml");
+  const std::string series_before = read_text(a / "series.csv");
+  const std::string pvd_before = read_text(a / "particles.pvd");
+  const std::string summary_before = read_text(a / "summary.json");
+  const std::vector<std::pair<std::string, std::string>> variants = {
+      {"missing", ""},
+      {"garbage", "this is not a checkpoint\n"},
+      {"truncated", checkpoint.substr(0, checkpoint.size() / 2)}};
+  for (const auto& [what, content] : variants) {
+    fs::remove(a / "checkpoint.bin");
+    if (what != "missing") write_text(a / "checkpoint.bin", content);
+    const CmdResult r = dir.run({"run", "--resume", a.string(), "--quiet", "--threads", "1",
+                                 "--set", "case.end_time=0.01"});
+    EXPECT_TRUE(r.status == 1 || r.status == 3) << what << "\n" << r;
+    const auto lines = r.err_lines();
+    ASSERT_EQ(lines.size(), 1u) << what << "\n" << r;
+    EXPECT_NE(lines[0].find("checkpoint"), std::string::npos) << what << "\n" << r;
+    EXPECT_EQ(read_text(a / "case.toml"), case_before) << what;
+    EXPECT_EQ(read_text(a / "series.csv"), series_before) << what;
+    EXPECT_EQ(read_text(a / "particles.pvd"), pvd_before) << what;
+    EXPECT_EQ(read_text(a / "summary.json"), summary_before) << what;
+    EXPECT_FALSE(fs::exists(a / snapshot(2, "csv"))) << what;
+  }
+}
+
+TEST(Restart, HaltedRunResumesToTheSameBytes3D) {
+  // 3D dam break at dp = 0.05 m (768 fluid + 6261 wall particles) to 4 ms, a snapshot every ms
+  // (18 steps), with csv snapshots too.
+  TempDir dir;
+  const fs::path a = dir / "a", b = dir / "b";
+  auto args = [&](const fs::path& out) {
+    return std::vector<std::string>{"run",
+                                    dam_break_3d(),
+                                    "--out",
+                                    out.string(),
+                                    "--quiet",
+                                    "--threads",
+                                    "1",
+                                    "--set",
+                                    "resolution.dp=0.05",
+                                    "--set",
+                                    "case.end_time=0.004",
+                                    "--set",
+                                    "output.interval=0.001",
+                                    "--set",
+                                    "output.formats=[\"vtp\", \"csv\"]"};
+  };
+  const CmdResult ra = dir.run(args(a));
+  ASSERT_EQ(ra.status, 0) << ra;
+  const CmdResult halted = dir.run(with(args(b), {"--halt-after-output", "2"}));
+  ASSERT_EQ(halted.status, kExitHalted) << halted;
+  EXPECT_FALSE(fs::exists(b / snapshot(3, "vtp")));
+  const CmdResult resumed = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1"});
+  ASSERT_EQ(resumed.status, 0) << resumed;
+  expect_same_outputs(a, b, 4, true);
+}
+
+}  // namespace
