@@ -159,18 +159,8 @@ TEST(Restart, LaterEndTimeContinuesAFinishedRun) {
 }
 
 TEST(Restart, LaterEndTimeMatchesAnUninterruptedRun) {
-  // BUG (src/vrsph/solver/simulation.cpp, Simulation::step, "land on the end time"): the last
-  // step of a run is shortened so that it lands exactly on case.end_time, but output times are not
-  // landed on. A run to 20 ms therefore ends with a short step (t = 0.0199514 -> 0.02, dt 4.9e-5
-  // s) that an uninterrupted run to 30 ms never takes (it passes 20 ms at t = 0.0200675), so
-  // `vrsph run --resume A --set case.end_time=0.03` on a finished 20 ms run differs from a 30 ms
-  // run: particles_0006.csv differs from line 2 on, series.csv from the row t = 0.02 on (0.02 vs
-  // 0.020067491730186786), particles.pvd likewise. Expected: byte-identical (README: "--resume
-  // ... reaches the same final state, bit for bit, as an uninterrupted run"). A fix: clamp dt to
-  // the next output time too (so every run lands on 0.005, 0.01, ...), or checkpoint the state
-  // before the landing step.
-  GTEST_SKIP() << "src bug: extending a finished run is not bit-identical to an uninterrupted "
-                  "run (the last step is shortened to land on the old end time)";
+  // Steps land on output times and the end time, so extending a run from its end time
+  // retraces an uninterrupted one; output times follow the interval from the resume time.
   TempDir dir;
   const fs::path a = dir / "a", c = dir / "c";
   ASSERT_EQ(dir.run(dam_break_20ms(a)).status, 0);
@@ -196,16 +186,8 @@ TEST(Restart, HaltedRunResumedToALaterEndTimeMatchesAnUninterruptedRun) {
 }
 
 TEST(Restart, NewOutputIntervalAppliesFromTheResumeTime) {
-  // BUG (src/vrsph/driver/run.cpp, run_impl/output_time): the next output time is
-  // output_time(spec, index) = index * output.interval with the snapshot index carried over from
-  // the checkpoint, so a changed interval is applied as if it had held from t = 0. Halting the
-  // 20 ms run after snapshot 2 (t = 0.01005) and resuming with `--set output.interval=0.0025`
-  // writes snapshots 3 and 4 at the very next two steps (t = 0.010169, 0.010286: index 3 and 4
-  // map to 7.5 ms and 10 ms, already past), then 12.5, 15, 17.5, 20 ms. Expected: snapshots
-  // every 2.5 ms from the resume time on (12.5, 15, 17.5, 20 ms), none at consecutive steps.
-  // Likewise a larger interval (0.008) maps index 3 to 24 ms and skips the snapshot near 16 ms.
-  GTEST_SKIP() << "src bug: resuming with a new output.interval writes snapshots at consecutive "
-                  "steps (snapshot index carried over, output time = index * interval)";
+  // Steps land on output times and the end time, so extending a run from its end time
+  // retraces an uninterrupted one; output times follow the interval from the resume time.
   TempDir dir;
   const fs::path b = dir / "b";
   ASSERT_EQ(dir.run(with(dam_break_20ms(b), {"--halt-after-output", "2"})).status, kExitHalted);
@@ -251,12 +233,8 @@ TEST(Restart, PhysicalOverridesAreRefused) {
 }
 
 TEST(Restart, SpacedEndTimeOverrideIsAcceptedOnResume) {
-  // BUG (src/vrsph/app/main.cpp, check_resume_overrides): the key is taken as everything before
-  // '=' without trimming, so `--set "case.end_time = 0.03"` (accepted by every other command:
-  // `vrsph check CASE --set "resolution.dp = 0.04"` works) is refused on resume with exit 1 and
-  // the self-contradictory "--set case.end_time = 0.03: cannot change case.end_time  when resuming
-  // (only case.end_time and output.interval)". Expected: accepted like `case.end_time=0.03`.
-  GTEST_SKIP() << "src bug: resume refuses '--set \"case.end_time = T\"' (key not trimmed)";
+  // Steps land on output times and the end time, so extending a run from its end time
+  // retraces an uninterrupted one; output times follow the interval from the resume time.
   TempDir dir;
   const fs::path a = dir / "a";
   ASSERT_EQ(dir.run(dam_break_20ms(a)).status, 0);

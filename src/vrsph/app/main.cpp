@@ -24,7 +24,10 @@ CaseSpec load_case(const std::string& path, const std::vector<std::string>& sets
 // A resumed run may change how long it runs and how often it writes, nothing physical.
 void check_resume_overrides(const std::vector<std::string>& sets) {
   for (const std::string& s : sets) {
-    const std::string key = s.substr(0, s.find('='));
+    std::string key = s.substr(0, s.find('='));
+    const auto first = key.find_first_not_of(" \t");
+    const auto last = key.find_last_not_of(" \t");
+    key = first == std::string::npos ? std::string() : key.substr(first, last - first + 1);
     if (key != "case.end_time" && key != "output.interval") {
       throw CaseError(fmt::format(
           "--set {}: cannot change {} when resuming (only case.end_time and output.interval)", s,
@@ -48,7 +51,8 @@ int dispatch(int argc, char** argv) {
   run->add_option("case", case_path, "case file (TOML)");
   run->add_option("--out", out_dir, "output folder (default out/<case name>)");
   run->add_option("--resume", resume_dir, "continue the run in this folder from its checkpoint");
-  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096).description("an integer >= 1"));
   run->add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
   run->add_flag("--quiet", quiet, "no progress line and no start/end summaries");
   run->add_flag("--force", force, "overwrite an earlier run in the output folder");
@@ -66,7 +70,8 @@ int dispatch(int argc, char** argv) {
   CLI::App* bench = app.add_subcommand("bench", "time a case without outputs (default: the benchmark case)");
   bench->add_option("case", case_path, "case file (default cases/bench_dam_break_2d.toml)");
   bench->add_option("--time", bench_time, "simulated time in s")->check(CLI::PositiveNumber);
-  bench->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
+  bench->add_option("--threads", threads, "OpenMP threads")
+      ->check(CLI::Range(1, 4096).description("an integer >= 1"));
   bench->add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
   bench->add_option("--json", json_out, "also write the figures to this JSON file");
   bench->add_option("--cells-per-support", cells, "neighbour cells per 2h (1 full, 2 half)")
@@ -95,6 +100,7 @@ int dispatch(int argc, char** argv) {
   ro.halt_after_output = halt_after;
   if (!resume_dir.empty()) {
     if (!case_path.empty()) throw CaseError("run: give either a case file or --resume DIR, not both");
+    if (!out_dir.empty()) throw CaseError("run: --out cannot be combined with --resume (the run continues in DIR)");
     check_resume_overrides(sets);
     ro.resume = true;
     ro.out_dir = resume_dir;

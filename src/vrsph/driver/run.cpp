@@ -23,9 +23,13 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Output time of snapshot k (k = 0 is the start).
-double output_time(const CaseSpec& spec, int k) {
-  return spec.output_interval > 0.0 ? k * spec.output_interval : (k == 0 ? 0.0 : spec.end_time);
+// The first output time after t: the next multiple of output.interval (or the end time when the
+// interval is 0), never past the end time. Computed from the time, not from a snapshot count, so
+// a resumed run may change the interval.
+double next_output_time(const CaseSpec& spec, double t) {
+  if (spec.output_interval <= 0.0) return spec.end_time;
+  const double k = std::floor(t / spec.output_interval * (1.0 + 1e-12) + 1e-9) + 1.0;
+  return std::min(k * spec.output_interval, spec.end_time);
 }
 
 // A fresh run refuses to overwrite an earlier run unless forced; forced, it removes the files a
@@ -92,20 +96,23 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   const double wall_before = sim.counters().wall_seconds;
-  if (!opt.resume) out.write(sim, index++);
+  if (!opt.resume) {
+    out.write(sim, index);
+    if (index++ == opt.halt_after_output) std::_Exit(kExitHalted);
+  }
   Progress progress(spec.end_time, !opt.quiet && isatty(STDOUT_FILENO));
-  const double eps_t = 1e-9 * spec.end_time;
   std::string error;
   try {
-    while (sim.time() < spec.end_time - eps_t) {
+    double t_out = next_output_time(spec, sim.time());
+    while (sim.time() < spec.end_time) {
+      sim.set_stop_time(t_out);
       sim.step();
       const double elapsed = seconds_since(t0);
       sim.counters().wall_seconds = wall_before + elapsed;
-      const bool at_end = sim.time() >= spec.end_time - eps_t;
-      if (at_end || sim.time() >= output_time(spec, index) - eps_t) {
+      if (sim.time() >= t_out) {
         out.write(sim, index);
-        if (index == opt.halt_after_output) std::_Exit(kExitHalted);
-        ++index;
+        if (index++ == opt.halt_after_output) std::_Exit(kExitHalted);
+        t_out = next_output_time(spec, sim.time());
       }
       progress.update(sim.time(), static_cast<long>(sim.step_count()),
                       elapsed > 0 ? sim.step_count() / elapsed : 0.0);

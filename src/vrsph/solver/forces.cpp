@@ -10,40 +10,6 @@
 namespace vrsph {
 namespace {
 
-// Neighbour data packed as separate contiguous arrays (structure of arrays) so the inner loop
-// over a run of candidates j loads unit-stride vectors and the compiler can evaluate several
-// pairs per instruction (`omp simd`).
-template <int D>
-struct NeighbourArrays {
-  std::array<std::vector<double>, D> x, v;
-  std::vector<double> rho, p, vol, mass;
-
-  // Copies the particle fields and fills ps.p from the EOS on the way.
-  void pack(ParticleSet<D>& ps, const TaitEos& eos) {
-    const std::size_t n = ps.size();
-    for (int k = 0; k < D; ++k) {
-      x[k].resize(n);
-      v[k].resize(n);
-    }
-    rho.resize(n);
-    p.resize(n);
-    vol.resize(n);
-    mass.resize(n);
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int k = 0; k < D; ++k) {
-        x[k][i] = ps.pos[i][k];
-        v[k][i] = ps.vel[i][k];
-      }
-      rho[i] = ps.rho[i];
-      ps.p[i] = eos.pressure(ps.rho[i]);
-      p[i] = ps.p[i];
-      vol[i] = ps.mass[i] / ps.rho[i];
-      mass[i] = ps.mass[i];
-    }
-  }
-};
-
 // Candidates of one cell's particles, copied from the runs of the cell stencil into one
 // contiguous block padded to a multiple of kPad with inert dummies (far away, zero volume and
 // mass), so that every particle of the cell sweeps a single vector loop with no remainder.
@@ -280,11 +246,18 @@ ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
 
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid) {
+  ForceWorkspace<D> ws;
+  return compute_forces(prm, ps, grid, ws);
+}
+
+template <int D>
+ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
+                          ForceWorkspace<D>& ws) {
   const std::size_t n = ps.size();
   ps.p.resize(n);
   ps.acc.resize(n);
   ps.drho.resize(n);
-  static NeighbourArrays<D> nb;  // reused between calls: no allocation once sizes settle
+  NeighbourArrays<D>& nb = ws.packed;
   nb.pack(ps, prm.eos);
   if (prm.viscosity == ViscosityModel::laminar) {
     return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, nb);
@@ -294,5 +267,9 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
 
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&);
+template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&,
+                                      ForceWorkspace<2>&);
+template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&,
+                                      ForceWorkspace<3>&);
 
 }  // namespace vrsph

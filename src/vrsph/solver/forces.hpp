@@ -5,7 +5,9 @@
 // count. Model choices are template parameters resolved once per call (forces.cpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
@@ -19,7 +21,51 @@ struct ForceStats {
   std::uint64_t pairs = 0;      // pairs within 2h evaluated (i != j)
 };
 
+// Neighbour data packed as separate contiguous arrays (structure of arrays) so the inner loop
+// over a run of candidates j loads unit-stride vectors and the compiler can evaluate several
+// pairs per instruction (`omp simd`).
+template <int D>
+struct NeighbourArrays {
+  std::array<std::vector<double>, D> x, v;
+  std::vector<double> rho, p, vol, mass;
+
+  // Copies the particle fields and fills ps.p from the EOS on the way.
+  void pack(ParticleSet<D>& ps, const TaitEos& eos) {
+    const std::size_t n = ps.size();
+    for (int k = 0; k < D; ++k) {
+      x[k].resize(n);
+      v[k].resize(n);
+    }
+    rho.resize(n);
+    p.resize(n);
+    vol.resize(n);
+    mass.resize(n);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int k = 0; k < D; ++k) {
+        x[k][i] = ps.pos[i][k];
+        v[k][i] = ps.vel[i][k];
+      }
+      rho[i] = ps.rho[i];
+      ps.p[i] = eos.pressure(ps.rho[i]);
+      p[i] = ps.p[i];
+      vol[i] = ps.mass[i] / ps.rho[i];
+      mass[i] = ps.mass[i];
+    }
+  }
+};
+
+// Buffers a force pass reuses from call to call (no allocation once sizes settle).
+template <int D>
+struct ForceWorkspace {
+  NeighbourArrays<D> packed;
+};
+
 // Fills ps.p from the EOS, then ps.acc and ps.drho for every particle (acc = 0 on walls).
+template <int D>
+ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
+                          ForceWorkspace<D>& ws);
+// The same with a workspace of its own (tests, one-off evaluations).
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid);
 

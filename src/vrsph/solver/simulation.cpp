@@ -106,7 +106,7 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
   ps_.resize(ps_.size());
   sort_particles();
   initial_fluid_ = ps_.count(Kind::fluid);
-  end_time_ = spec.end_time;
+  stop_time_ = spec.end_time;
 
   // First step: the acoustic limit of a fluid at rest, with the viscous and capillary limits.
   DtInputs in{prm_.h, prm_.cfl, setup_.c0, 0.0, 0.0, 0.0, prm_.nu, spec.density, prm_.sigma};
@@ -201,16 +201,17 @@ DtChoice Simulation<D>::next_dt(const ForceStats& a, const ForceStats& b) const 
 template <int D>
 void Simulation<D>::step() {
   double dt = dt_next_;
-  if (end_time_ > 0.0 && t_ + dt > end_time_) dt = end_time_ - t_;  // land on the end time
+  const bool lands = stop_time_ > t_ && t_ + dt >= stop_time_;
+  if (lands) dt = stop_time_ - t_;
   double t0 = now_seconds();
-  const ForceStats s1 = compute_forces(prm_, ps_, grid_);
+  const ForceStats s1 = compute_forces(prm_, ps_, grid_, force_ws_);
   times_.forces += now_seconds() - t0;
   t0 = now_seconds();
   predictor(dt);
   times_.update += now_seconds() - t0;
   sort_particles();
   t0 = now_seconds();
-  const ForceStats s2 = compute_forces(prm_, ps_, grid_);
+  const ForceStats s2 = compute_forces(prm_, ps_, grid_, force_ws_);
   times_.forces += now_seconds() - t0;
   t0 = now_seconds();
   corrector(dt);
@@ -218,7 +219,7 @@ void Simulation<D>::step() {
   counters_.particle_steps += ps_.size();
   sort_particles();
   t0 = now_seconds();
-  t_ += dt;
+  t_ = lands ? stop_time_ : t_ + dt;
   ++step_;
   dt_last_ = dt;
   counters_.pairs += s1.pairs + s2.pairs;

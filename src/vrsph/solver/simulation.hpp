@@ -72,7 +72,10 @@ class Simulation {
   // Restores the stepping state (checkpoint); particles are set through particles().
   void restore(double t, std::int64_t step, double dt_next, const RunCounters& c,
                std::size_t initial_fluid);
-  void set_end_time(double t_end) { end_time_ = t_end; }
+  // The next step is shortened so as to end exactly at t_stop when it would pass it (output
+  // times and the end time): snapshots fall on their nominal times, and a run extended from its
+  // end time retraces an uninterrupted one.
+  void set_stop_time(double t_stop) { stop_time_ = t_stop; }
   // Re-sorts after the particle arrays were replaced (resume).
   void resort();
 
@@ -91,8 +94,9 @@ class Simulation {
   SolverParams<D> prm_;
   ParticleSet<D> ps_;
   CellGrid<D> grid_;
+  ForceWorkspace<D> force_ws_;
   double t_ = 0.0;
-  double end_time_ = 0.0;
+  double stop_time_ = 0.0;
   std::int64_t step_ = 0;
   double dt_next_ = 0.0;
   double dt_last_ = 0.0;

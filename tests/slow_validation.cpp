@@ -1,0 +1,53 @@
+// Long validation runs of the base solver, labelled `slow` (ctest -L slow): run by hand, results
+// recorded in docs/validation.md. Same checks as tests/test_physics.cpp at finer resolution.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "vrsph/analysis/front.hpp"
+#include "vrsph/setup/case_parser.hpp"
+#include "vrsph/solver/simulation.hpp"
+
+namespace vrsph {
+namespace {
+
+CaseSpec load(const std::string& name, const std::vector<std::string>& sets) {
+  toml::table tbl = load_case_table(std::string(VRSPH_CASES_DIR) + "/" + name);
+  for (const auto& s : sets) apply_override(tbl, s);
+  return parse_case(tbl, name);
+}
+
+// Dam-break front at dp = a/100 (VRSPH_SLOW_DP overrides) up to T = 3, against both series.
+TEST(SlowDamBreak, FrontAtFineResolution) {
+  const char* env = std::getenv("VRSPH_SLOW_DP");
+  const std::string dp = env ? env : "0.01";
+  CaseSpec spec = load("dam_break_2d.toml", {"resolution.dp=" + dp});
+  const double t_scale = std::sqrt(2 * 9.81 / 1.0);
+  spec.end_time = 3.0 / t_scale;
+  Simulation<2> sim(spec);
+  std::vector<FrontPoint> history{{0.0, surge_front(sim.particles())}};
+  double next = 0.0;
+  while (sim.time() < spec.end_time - 1e-12) {
+    sim.step();
+    if (sim.time() * t_scale >= next) {
+      history.push_back({sim.time() * t_scale, surge_front(sim.particles())});
+      next += 0.02;
+    }
+  }
+  const std::string ref = std::string(VRSPH_REFERENCE_DIR) + "/dam_break_front.csv";
+  for (const std::string src : {"martin_moyce_1952", "koshizuka_oka_1996"}) {
+    for (double shift : {0.0, 0.175}) {
+      const FrontError e = compare_front(history, load_front_reference(ref, src), shift, 0.4);
+      std::printf("dp %s vs %s, T shift %.3f: RMS %.3f, max %.3f over %d points\n", dp.c_str(),
+                  src.c_str(), shift, e.rms, e.max_abs, e.n);
+      if (shift > 0) {
+        EXPECT_LT(e.rms, 0.10);
+      }
+    }
+  }
+  for (const auto& p : history) std::printf("front T %.3f Z %.4f\n", p.T, p.Z);
+}
+
+}  // namespace
+}  // namespace vrsph
