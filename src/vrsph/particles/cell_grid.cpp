@@ -33,14 +33,20 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
     lo[k] = std::numeric_limits<std::int64_t>::max();
     hi[k] = std::numeric_limits<std::int64_t>::min();
   }
-  for (const auto& x : ps.pos) {
+  std::int64_t lo0 = lo[0], lo1 = lo[1], lo2 = lo[2], hi0 = hi[0], hi1 = hi[1], hi2 = hi[2];
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static) reduction(min : lo0, lo1, lo2) reduction(max : hi0, hi1, hi2)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto& x = ps.pos[i];
     if (!inside(x)) continue;
-    for (int k = 0; k < D; ++k) {
-      const auto c = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_);
-      lo[k] = std::min(lo[k], c);
-      hi[k] = std::max(hi[k], c);
-    }
+    std::array<std::int64_t, 3> c{0, 0, 0};
+    for (int k = 0; k < D; ++k) c[k] = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_);
+    lo0 = std::min(lo0, c[0]), hi0 = std::max(hi0, c[0]);
+    lo1 = std::min(lo1, c[1]), hi1 = std::max(hi1, c[1]);
+    lo2 = std::min(lo2, c[2]), hi2 = std::max(hi2, c[2]);
   }
+  lo = {lo0, lo1, lo2};
+  hi = {hi0, hi1, hi2};
   ncell_total_ = 1;
   for (int k = 0; k < D; ++k) {
     if (hi[k] < lo[k]) lo[k] = hi[k] = 0;  // no particle inside
@@ -93,15 +99,18 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   std::vector<std::uint64_t> lost;
   pcell_.resize(n);
   fit_to(ps);
+  const auto ni = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < ni; ++i) {
+    pcell_[i] = inside(ps.pos[i]) ? static_cast<std::int64_t>(key(cell_of(ps.pos[i]), ps.kind[i])) : -1;
+  }
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!inside(ps.pos[i])) {
+  for (std::size_t i = 0; i < n; ++i) {  // histogram (serial: cheap, and no atomics)
+    if (pcell_[i] < 0) {
       lost.push_back(ps.id[i]);
-      pcell_[i] = -1;
       continue;
     }
-    pcell_[i] = cell_of(ps.pos[i]);
-    ++begin_[key(pcell_[i], ps.kind[i])];
+    ++begin_[static_cast<std::size_t>(pcell_[i])];
     ++kept;
   }
   // Inclusive prefix sum: begin_[k] = end of key k; the reverse scatter below walks it back to
@@ -110,7 +119,7 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   perm_.resize(kept);
   for (std::size_t i = n; i-- > 0;) {
     if (pcell_[i] < 0) continue;
-    perm_[--begin_[key(pcell_[i], ps.kind[i])]] = static_cast<std::uint32_t>(i);
+    perm_[--begin_[static_cast<std::size_t>(pcell_[i])]] = static_cast<std::uint32_t>(i);
   }
   // One parallel region gathers every array through the permutation; the scratch arrays are
   // members, and after the swap they hold the previous storage, so nothing is allocated once
@@ -144,6 +153,11 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   ps.mass.swap(dbl_scratch_[1]);
   ps.rho0.swap(dbl_scratch_[2]);
   pcell_.swap(cell_scratch_);
+  // pcell_ held sort keys; particle_cells() gives cells, without the wall group's offset.
+  const auto wall_begin = static_cast<std::int64_t>(group_begin(Group::wall));
+  const auto n_kept = static_cast<std::int64_t>(kept);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = wall_begin; i < n_kept; ++i) pcell_[i] -= ncell_total_;
   // Derived fields (p, acc, drho) are recomputed after every sort: only resize them.
   ps.p.resize(kept);
   ps.acc.resize(kept);

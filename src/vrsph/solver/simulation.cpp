@@ -235,13 +235,23 @@ void Simulation<D>::step() {
 template <int D>
 void Simulation<D>::check_state() const {
   const double rho0 = prm_.eos.rho0;
-  for (std::size_t i = 0; i < ps_.size(); ++i) {
-    if (ps_.kind[i] == Kind::wall) continue;
+  const auto n = static_cast<std::int64_t>(ps_.size());
+  auto bad = [&](std::int64_t i) {
+    if (ps_.kind[i] == Kind::wall) return false;
+    const bool finite = std::isfinite(ps_.rho[i]) && std::isfinite(norm2(ps_.vel[i])) &&
+                        std::isfinite(norm2(ps_.pos[i]));
+    return !finite || ps_.rho[i] < 0.5 * rho0 || ps_.rho[i] > 2.0 * rho0;
+  };
+  std::int64_t first = n;  // lowest failing index: the same report for any thread count
+#pragma omp parallel for schedule(static) reduction(min : first)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (bad(i)) first = std::min(first, i);
+  }
+  if (first < n) {
+    const auto i = static_cast<std::size_t>(first);
     const auto& x = ps_.pos[i];
     const bool finite = std::isfinite(ps_.rho[i]) && std::isfinite(norm2(ps_.vel[i])) &&
                         std::isfinite(norm2(x));
-    const bool rho_ok = ps_.rho[i] >= 0.5 * rho0 && ps_.rho[i] <= 2.0 * rho0;
-    if (finite && rho_ok) continue;
     std::string where = fmt::format("({:.6g}", x[0]);
     for (int k = 1; k < D; ++k) where += fmt::format(", {:.6g}", x[k]);
     where += ")";
