@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 
@@ -60,7 +61,7 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   j["pairs_per_particle_step"] = static_cast<double>(c.pairs) / static_cast<double>(c.particle_steps);
   j["pass_share"] = {{"sort", t.sort / wall},     {"forces", t.forces / wall},
                      {"update", t.update / wall}, {"checks", t.checks / wall},
-                     {"other", (wall - accounted) / wall}};
+                     {"other", std::max(0.0, wall - accounted) / wall}};
   j["cells_per_support"] = opt.cells_per_support;
   const double anchor = 1.54e6;  // DualSPHysics 5.4 CPU, 2 threads, same case and machine type
   j["ratio_to_dualsphysics"] = c.particle_steps / wall / anchor;
@@ -73,7 +74,7 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   fmt::print("  time per pass: forces {:.1f}%, sort {:.1f}%, update {:.1f}%, checks {:.1f}%, "
              "other {:.1f}%\n",
              100 * t.forces / wall, 100 * t.sort / wall, 100 * t.update / wall,
-             100 * t.checks / wall, 100 * (wall - accounted) / wall);
+             100 * t.checks / wall, 100 * std::max(0.0, wall - accounted) / wall);
   fmt::print("{}\n", j.dump());
   if (opt.json_out) write_summary_json(*opt.json_out, j);
   return kExitOk;
