@@ -6,23 +6,19 @@
 #include <cstdlib>
 
 #include "vrsph/analysis/front.hpp"
-#include "vrsph/setup/case_parser.hpp"
+#include "case_util.hpp"
 #include "vrsph/solver/simulation.hpp"
 
 namespace vrsph {
 namespace {
 
-CaseSpec load(const std::string& name, const std::vector<std::string>& sets) {
-  toml::table tbl = load_case_table(std::string(VRSPH_CASES_DIR) + "/" + name);
-  for (const auto& s : sets) apply_override(tbl, s);
-  return parse_case(tbl, name);
-}
+using test::load_case;
 
 // Dam-break front at dp = a/100 (VRSPH_SLOW_DP overrides) up to T = 3, against both series.
 TEST(SlowDamBreak, FrontAtFineResolution) {
   const char* env = std::getenv("VRSPH_SLOW_DP");
   const std::string dp = env ? env : "0.01";
-  CaseSpec spec = load("dam_break_2d.toml", {"resolution.dp=" + dp});
+  CaseSpec spec = load_case("dam_break_2d.toml", {"resolution.dp=" + dp});
   const double t_scale = std::sqrt(2 * 9.81 / 1.0);
   spec.end_time = 3.0 / t_scale;
   Simulation<2> sim(spec);

@@ -67,6 +67,31 @@ struct Candidates {
   }
 };
 
+// Raw pointers into a candidate block, read by the vector loops.
+template <int D>
+struct BlockView {
+  const double *x0, *x1, *x2, *v0, *v1, *v2, *rho, *p, *vol, *mass;
+  std::ptrdiff_t len;
+  explicit BlockView(const Candidates<D>& cand)
+      : x0(cand.a.x[0].data()), x1(cand.a.x[1].data()), x2(cand.a.x[D - 1].data()),
+        v0(cand.a.v[0].data()), v1(cand.a.v[1].data()), v2(cand.a.v[D - 1].data()),
+        rho(cand.a.rho.data()), p(cand.a.p.data()), vol(cand.a.vol.data()),
+        mass(cand.a.mass.data()), len(static_cast<std::ptrdiff_t>(cand.len)) {}
+};
+
+// Position and velocity of particle i, padded to 3 components.
+template <int D>
+struct SelfState {
+  double x[3] = {0.0, 0.0, 0.0};
+  double v[3] = {0.0, 0.0, 0.0};
+  SelfState(const NeighbourArrays<D>& nb, std::uint32_t i) {
+    for (int k = 0; k < D; ++k) {
+      x[k] = nb.x[k][i];
+      v[k] = nb.v[k][i];
+    }
+  }
+};
+
 // Running sums of one particle i (scalars, so `omp simd` can reduce them).
 struct Accum {
   double acc[3] = {0.0, 0.0, 0.0};
@@ -75,34 +100,23 @@ struct Accum {
   std::uint64_t pairs = 0;
 };
 
-// Sums the pair terms of fluid particle i over candidates [b, e). Candidates outside the support
+// Sums the pair terms of fluid particle i over its candidate block. Candidates outside the support
 // (and i itself, r = 0) get a zero kernel factor instead of a branch, so the loop vectorises.
 // kWall: the run holds wall particles, which take no part in density diffusion (as DualSPHysics'
 // Fourtakas "full" variant). kSeries: the Fourtakas hydrostatic term may use its series form.
 template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall>
 inline void fluid_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, std::uint32_t i,
                       const Candidates<D>& cand, Accum& a) {
-  double xi[3] = {}, vi[3] = {};
-  for (int k = 0; k < D; ++k) {
-    xi[k] = nb.x[k][i];
-    vi[k] = nb.v[k][i];
-  }
+  const SelfState<D> self(nb, i);
+  const double *xi = self.x, *vi = self.v;
   const double rho_i = nb.rho[i], p_i = nb.p[i];
   const double inv_rho_i = 1.0 / rho_i;
   const double support2 = prm.kernel.support2, inv_h = prm.kernel.inv_h;
   const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
-  const NeighbourArrays<D>& c = cand.a;
-  const double* xj0 = c.x[0].data();
-  const double* xj1 = c.x[1].data();
-  const double* xj2 = c.x[D - 1].data();
-  const double* vj0 = c.v[0].data();
-  const double* vj1 = c.v[1].data();
-  const double* vj2 = c.v[D - 1].data();
-  const double* rho = c.rho.data();
-  const double* p = c.p.data();
-  const double* vol = c.vol.data();
-  const double* mass = c.mass.data();
-  const auto len = static_cast<std::ptrdiff_t>(cand.len);
+  const BlockView<D> c(cand);
+  const double *xj0 = c.x0, *xj1 = c.x1, *xj2 = c.x2, *vj0 = c.v0, *vj1 = c.v1, *vj2 = c.v2;
+  const double *rho = c.rho, *p = c.p, *vol = c.vol, *mass = c.mass;
+  const std::ptrdiff_t len = c.len;
   double ax = 0.0, ay = 0.0, az = 0.0, drho = 0.0, vdt = -1e300, npair = 0.0;
 #pragma omp simd reduction(+ : ax, ay, az, drho, npair) reduction(max : vdt)
   for (std::ptrdiff_t j = 0; j < len; ++j) {
@@ -153,27 +167,19 @@ inline void fluid_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, 
   a.pairs += static_cast<std::uint64_t>(npair);
 }
 
-// Continuity of wall particle i over the fluid candidates [b, e) (dynamic boundary).
+// Continuity of wall particle i over its fluid candidates (dynamic boundary).
 template <int D>
 inline void wall_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, std::uint32_t i,
                      const Candidates<D>& cand, Accum& a) {
-  double xi[3] = {}, vi[3] = {};
-  for (int k = 0; k < D; ++k) {
-    xi[k] = nb.x[k][i];
-    vi[k] = nb.v[k][i];
-  }
+  const SelfState<D> self(nb, i);
+  const double *xi = self.x, *vi = self.v;
   const double rho_i = nb.rho[i];
   const double support2 = prm.kernel.support2, inv_h = prm.kernel.inv_h;
   const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
-  const NeighbourArrays<D>& c = cand.a;
-  const double* xj0 = c.x[0].data();
-  const double* xj1 = c.x[1].data();
-  const double* xj2 = c.x[D - 1].data();
-  const double* vj0 = c.v[0].data();
-  const double* vj1 = c.v[1].data();
-  const double* vj2 = c.v[D - 1].data();
-  const double* vol = c.vol.data();
-  const auto len = static_cast<std::ptrdiff_t>(cand.len);
+  const BlockView<D> c(cand);
+  const double *xj0 = c.x0, *xj1 = c.x1, *xj2 = c.x2, *vj0 = c.v0, *vj1 = c.v1, *vj2 = c.v2;
+  const double* vol = c.vol;
+  const std::ptrdiff_t len = c.len;
   double drho = 0.0, vdt = -1e300, npair = 0.0;
 #pragma omp simd reduction(+ : drho, npair) reduction(max : vdt)
   for (std::ptrdiff_t j = 0; j < len; ++j) {

@@ -39,10 +39,29 @@ void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>
   }
 }
 
+// Models the case format already accepts but this solver does not compute yet are refused, never
+// silently skipped.
+void refuse_unimplemented(const CaseSpec& spec) {
+  if (spec.surface_tension > 0.0) {
+    throw std::invalid_argument(fmt::format(
+        "fluid.surface_tension = {}: surface tension is not implemented in this version (set 0)",
+        spec.surface_tension));
+  }
+  if (spec.shifting != ShiftingModel::none) {
+    throw std::invalid_argument(
+        "numerics.shifting.model: particle shifting is not implemented in this version (use \"none\")");
+  }
+  if (!spec.refinements.empty()) {
+    throw std::invalid_argument(
+        "refinement: variable resolution is not implemented in this version (remove [[refinement]])");
+  }
+}
+
 }  // namespace
 
 template <int D>
 Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
+  refuse_unimplemented(spec);
   InitialSet<D> init = build_particles<D>(spec);
   ps_ = std::move(init.particles);
   setup_.fluid_height = init.fluid_height;
