@@ -159,9 +159,9 @@ void apply_hydrostatic_density(ParticleSet<D>& ps, const Vec<D>& gravity, double
   const int reach = 4;  // wall columns look this many dp sideways for fluid above them
   for (std::size_t i = 0; i < ps.size(); ++i) {
     double surface = -1e300;
-    const int ry = D == 3 ? reach : 0;
-    const int rx = ps.kind[i] == Kind::fluid ? 0 : reach;
-    for (int dy = -(ps.kind[i] == Kind::fluid ? 0 : ry); dy <= (ps.kind[i] == Kind::fluid ? 0 : ry); ++dy)
+    const int rx = ps.kind[i] == Kind::fluid ? 0 : reach;  // fluid: its own column only
+    const int ry = D == 3 ? rx : 0;
+    for (int dy = -ry; dy <= ry; ++dy)
       for (int dx = -rx; dx <= rx; ++dx) {
         auto it = top.find(column(ps.pos[i], dx, dy));
         if (it != top.end()) surface = std::max(surface, it->second);
