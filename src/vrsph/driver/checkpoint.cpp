@@ -121,12 +121,13 @@ template <int D>
 void Checkpoint::put_particles(int level, const ParticleSet<D>& ps) {
   const std::string pre = "level" + std::to_string(level) + ".";
   const std::size_t n = ps.size();
-  std::vector<double> pos(n * D), vel(n * D);
+  std::vector<double> pos(n * D), vel(n * D), shift(n * D);
   std::vector<std::uint8_t> kind(n);
   for (std::size_t i = 0; i < n; ++i) {
     for (int k = 0; k < D; ++k) {
       pos[i * D + k] = ps.pos[i][k];
       vel[i * D + k] = ps.vel[i][k];
+      shift[i * D + k] = ps.shift[i][k];
     }
     kind[i] = static_cast<std::uint8_t>(ps.kind[i]);
   }
@@ -136,6 +137,7 @@ void Checkpoint::put_particles(int level, const ParticleSet<D>& ps) {
   put(pre + "vel", std::move(vel));
   put(pre + "rho", ps.rho);
   put(pre + "mass", ps.mass);
+  put(pre + "shift", std::move(shift));
 }
 
 template <int D>
@@ -163,6 +165,12 @@ void Checkpoint::get_particles(int level, ParticleSet<D>& ps) const {
     }
     ps.rho[i] = rho[i];
     ps.mass[i] = mass[i];
+  }
+  if (has(pre + "shift")) {  // the last shifting displacement (an output field)
+    const auto& shift = f64(pre + "shift");
+    if (shift.size() != n * D) throw std::runtime_error("checkpoint: " + pre + "shift has the wrong size");
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < D; ++k) ps.shift[i][k] = shift[i * D + k];
   }
 }
 

@@ -124,7 +124,8 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   // One parallel region gathers every array through the permutation; the scratch arrays are
   // members, and after the swap they hold the previous storage, so nothing is allocated once
   // the sizes have settled.
-  for (auto* v : {&vec_scratch_[0], &vec_scratch_[1], &vec_scratch_[2], &vec_scratch_[3]})
+  for (auto* v : {&vec_scratch_[0], &vec_scratch_[1], &vec_scratch_[2], &vec_scratch_[3],
+                  &vec_scratch_[4]})
     v->resize(kept);
   for (auto* v : {&dbl_scratch_[0], &dbl_scratch_[1], &dbl_scratch_[2]}) v->resize(kept);
   id_scratch_.resize(kept);
@@ -138,6 +139,7 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
     permute_into(ps.vel, perm_, vec_scratch_[1]);
     permute_into(ps.pos0, perm_, vec_scratch_[2]);
     permute_into(ps.vel0, perm_, vec_scratch_[3]);
+    permute_into(ps.shift, perm_, vec_scratch_[4]);
     permute_into(ps.rho, perm_, dbl_scratch_[0]);
     permute_into(ps.mass, perm_, dbl_scratch_[1]);
     permute_into(ps.rho0, perm_, dbl_scratch_[2]);
@@ -149,6 +151,7 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   ps.vel.swap(vec_scratch_[1]);
   ps.pos0.swap(vec_scratch_[2]);
   ps.vel0.swap(vec_scratch_[3]);
+  ps.shift.swap(vec_scratch_[4]);
   ps.rho.swap(dbl_scratch_[0]);
   ps.mass.swap(dbl_scratch_[1]);
   ps.rho0.swap(dbl_scratch_[2]);

@@ -31,6 +31,7 @@ struct ParticleSet {
   std::vector<Vec<D>> vel;        // m/s
   std::vector<double> rho;        // kg/m^3
   std::vector<double> mass;       // kg
+  std::vector<Vec<D>> shift;      // last shifting displacement, m (output; kept through sorts)
 
   // Derived per force evaluation (not checkpointed).
   std::vector<double> p;          // pressure, Pa
@@ -51,6 +52,7 @@ struct ParticleSet {
     vel.resize(n);
     rho.resize(n);
     mass.resize(n);
+    shift.resize(n);
     p.resize(n);
     acc.resize(n);
     drho.resize(n);

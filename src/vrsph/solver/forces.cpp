@@ -203,7 +203,7 @@ inline void wall_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, s
 
 template <int D, ViscosityModel VM, DiffusionModel DM>
 ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                      const NeighbourArrays<D>& nb) {
+                      const NeighbourArrays<D>& nb, const Vec<D>* extra_acc) {
   const auto& cells = grid.particle_cells();
   const auto n = static_cast<std::int64_t>(ps.size());
   double max_visc_dt = -1e300, max_acc2 = 0.0;
@@ -225,6 +225,7 @@ ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     }
     Vec<D> acc;
     for (int k = 0; k < D; ++k) acc[k] = a.acc[k];
+    if (extra_acc != nullptr && ps.kind[i] != Kind::wall) acc += extra_acc[i];
     ps.acc[i] = acc;
     ps.drho[i] = a.drho;
     if (ps.kind[i] != Kind::wall) max_acc2 = std::max(max_acc2, norm2(acc));
@@ -237,13 +238,14 @@ ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
 
 template <int D, ViscosityModel VM>
 ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
-                              const CellGrid<D>& grid, const NeighbourArrays<D>& nb) {
+                              const CellGrid<D>& grid, const NeighbourArrays<D>& nb,
+                              const Vec<D>* extra) {
   switch (prm.diffusion) {
-    case DiffusionModel::none: return force_loop<D, VM, DiffusionModel::none>(prm, ps, grid, nb);
+    case DiffusionModel::none: return force_loop<D, VM, DiffusionModel::none>(prm, ps, grid, nb, extra);
     case DiffusionModel::molteni:
-      return force_loop<D, VM, DiffusionModel::molteni>(prm, ps, grid, nb);
+      return force_loop<D, VM, DiffusionModel::molteni>(prm, ps, grid, nb, extra);
     case DiffusionModel::fourtakas:
-      return force_loop<D, VM, DiffusionModel::fourtakas>(prm, ps, grid, nb);
+      return force_loop<D, VM, DiffusionModel::fourtakas>(prm, ps, grid, nb, extra);
   }
   return {};
 }
@@ -258,7 +260,7 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
 
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                          ForceWorkspace<D>& ws) {
+                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc) {
   const std::size_t n = ps.size();
   ps.p.resize(n);
   ps.acc.resize(n);
@@ -266,16 +268,16 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
   NeighbourArrays<D>& nb = ws.packed;
   nb.pack(ps, prm.eos);
   if (prm.viscosity == ViscosityModel::laminar) {
-    return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, nb);
+    return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, nb, extra_acc);
   }
-  return dispatch_diffusion<D, ViscosityModel::artificial>(prm, ps, grid, nb);
+  return dispatch_diffusion<D, ViscosityModel::artificial>(prm, ps, grid, nb, extra_acc);
 }
 
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&,
-                                      ForceWorkspace<2>&);
+                                      ForceWorkspace<2>&, const Vec<2>*);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&,
-                                      ForceWorkspace<3>&);
+                                      ForceWorkspace<3>&, const Vec<3>*);
 
 }  // namespace vrsph

@@ -62,9 +62,11 @@ struct ForceWorkspace {
 };
 
 // Fills ps.p from the EOS, then ps.acc and ps.drho for every particle (acc = 0 on walls).
+// extra_acc (null: none) is a per-particle acceleration added to the fluid's, e.g. surface
+// tension; it counts in ForceStats::max_acc.
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                          ForceWorkspace<D>& ws);
+                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc = nullptr);
 // The same with a workspace of its own (tests, one-off evaluations).
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid);

@@ -5,6 +5,7 @@
 #include "vrsph/core/kernel.hpp"
 #include "vrsph/core/vec.hpp"
 #include "vrsph/physics/eos.hpp"
+#include "vrsph/physics/shifting.hpp"
 #include "vrsph/setup/case_spec.hpp"
 
 namespace vrsph {
@@ -31,6 +32,9 @@ struct SolverParams {
 
   double cfl = 0.2;
   double sigma = 0.0;     // surface tension coefficient
+  double lambda_threshold = 0.7;  // surface-tension normal: difference form above this lambda
+  double normal_epsilon = 0.1;    // surface-tension normal: |grad lambda| > eps lambda / h
+  ShiftingParams shifting;
   double dt_min = 0.0;    // 0.05 h / c0 (DualSPHysics CoefDtMin): below this the run is unstable
 
   double height(const Vec<D>& x) const { return dot(x, up); }

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "vrsph/physics/pair_terms.hpp"
+#include "vrsph/physics/shifting.hpp"
 #include "vrsph/setup/geometry.hpp"
 
 namespace vrsph {
@@ -42,15 +43,6 @@ void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>
 // Models the case format already accepts but this solver does not compute yet are refused, never
 // silently skipped.
 void refuse_unimplemented(const CaseSpec& spec) {
-  if (spec.surface_tension > 0.0) {
-    throw std::invalid_argument(fmt::format(
-        "fluid.surface_tension = {}: surface tension is not implemented in this version (set 0)",
-        spec.surface_tension));
-  }
-  if (spec.shifting != ShiftingModel::none) {
-    throw std::invalid_argument(
-        "numerics.shifting.model: particle shifting is not implemented in this version (use \"none\")");
-  }
   if (!spec.refinements.empty()) {
     throw std::invalid_argument(
         "refinement: variable resolution is not implemented in this version (remove [[refinement]])");
@@ -111,6 +103,10 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
   prm_.two_delta_h_c0 = 2.0 * spec.diffusion_delta * prm_.h * setup_.c0;
   prm_.cfl = spec.cfl;
   prm_.sigma = spec.surface_tension;
+  prm_.lambda_threshold = spec.lambda_threshold;
+  prm_.normal_epsilon = spec.normal_epsilon;
+  prm_.shifting = {spec.shifting, spec.shifting_coefficient, spec.shifting_surface_threshold,
+                   prm_.h, spec.dp};
   prm_.dt_min = 0.05 * prm_.h / setup_.c0;
 
   if (spec.hydrostatic_initial_density && g > 0.0) {
@@ -186,11 +182,12 @@ void Simulation<D>::predictor(double dt) {
   }
 }
 
-// Corrector: v' = v + dt (a+ + g), x' = x + dt (v + v')/2, rho' = rho (2 - eps)/(2 + eps),
+// Corrector: v' = v + dt (a+ + g), x' = x + dt (v + v')/2 + dr_shift, rho' = rho (2 - eps)/(2 + eps),
 // eps = -(drho+/rho+) dt.
 template <int D>
 void Simulation<D>::corrector(double dt) {
   const double rho0 = prm_.eos.rho0;
+  const bool shifting = prm_.shifting.model != ShiftingModel::none;
   const auto n = static_cast<std::int64_t>(ps_.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -200,8 +197,12 @@ void Simulation<D>::corrector(double dt) {
       ps_.rho[i] = std::max(ps_.rho[i], rho0);
       continue;
     }
+    if (shifting) {  // from the half-step sums and velocity
+      ps_.shift[i] = shifting_displacement<D>(prm_.shifting, sf_.grad_c[i], sf_.div_r[i],
+                                              norm(ps_.vel[i]), dt);
+    }
     ps_.vel[i] = ps_.vel0[i] + dt * (ps_.acc[i] + prm_.gravity);
-    ps_.pos[i] = ps_.pos0[i] + (0.5 * dt) * (ps_.vel0[i] + ps_.vel[i]);
+    ps_.pos[i] = ps_.pos0[i] + (0.5 * dt) * (ps_.vel0[i] + ps_.vel[i]) + ps_.shift[i];
   }
 }
 
@@ -217,21 +218,40 @@ DtChoice Simulation<D>::next_dt(const ForceStats& a, const ForceStats& b) const 
   return choose_dt(in);
 }
 
+// One force evaluation: the surface passes (when surface tension or shifting is on), then the
+// pair forces with the surface-tension acceleration added.
+template <int D>
+ForceStats Simulation<D>::evaluate_forces() {
+  double t0 = now_seconds();
+  const bool st = prm_.sigma > 0.0;
+  if (st || prm_.shifting.model != ShiftingModel::none) surface_sums(prm_, ps_, grid_, sf_);
+  if (st) surface_tension_force(prm_, ps_, grid_, sf_);
+  times_.surface += now_seconds() - t0;
+  t0 = now_seconds();
+  const ForceStats s = compute_forces(prm_, ps_, grid_, force_ws_, st ? sf_.acc_st.data() : nullptr);
+  times_.forces += now_seconds() - t0;
+  return s;
+}
+
+template <int D>
+const SurfaceFields<D>& Simulation<D>::surface_fields_now() {
+  surface_sums(prm_, ps_, grid_, sf_);
+  if (prm_.sigma > 0.0) surface_tension_force(prm_, ps_, grid_, sf_);
+  return sf_;
+}
+
 template <int D>
 void Simulation<D>::step() {
   double dt = dt_next_;
   const bool lands = stop_time_ > t_ && t_ + dt >= stop_time_;
   if (lands) dt = stop_time_ - t_;
+  const ForceStats s1 = evaluate_forces();
   double t0 = now_seconds();
-  const ForceStats s1 = compute_forces(prm_, ps_, grid_, force_ws_);
-  times_.forces += now_seconds() - t0;
   t0 = now_seconds();
   predictor(dt);
   times_.update += now_seconds() - t0;
   sort_particles();
-  t0 = now_seconds();
-  const ForceStats s2 = compute_forces(prm_, ps_, grid_, force_ws_);
-  times_.forces += now_seconds() - t0;
+  const ForceStats s2 = evaluate_forces();
   t0 = now_seconds();
   corrector(dt);
   times_.update += now_seconds() - t0;

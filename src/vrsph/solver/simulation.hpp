@@ -13,6 +13,7 @@
 #include "vrsph/setup/case_spec.hpp"
 #include "vrsph/solver/forces.hpp"
 #include "vrsph/solver/params.hpp"
+#include "vrsph/solver/surface_pass.hpp"
 #include "vrsph/solver/timestep.hpp"
 
 namespace vrsph {
@@ -34,6 +35,7 @@ struct RunCounters {
 // Wall-clock share per pass (seconds), for the benchmark profile.
 struct PassTimes {
   double sort = 0.0;
+  double surface = 0.0;  // surface-tension and shifting neighbour passes
   double forces = 0.0;
   double update = 0.0;
   double checks = 0.0;
@@ -82,11 +84,18 @@ class Simulation {
   // Pressure of every particle from its current density (outputs).
   void update_pressure();
 
+  // lambda, normals, curvature, ... of the current state (outputs); recomputed on each call.
+  const SurfaceFields<D>& surface_fields_now();
+  bool has_surface_fields() const {
+    return prm_.sigma > 0.0 || prm_.shifting.model != ShiftingModel::none;
+  }
+
  private:
   void sort_particles();
   void predictor(double dt);
   void corrector(double dt);
   void check_state() const;
+  ForceStats evaluate_forces();
   DtChoice next_dt(const ForceStats& a, const ForceStats& b) const;
 
   CaseSpec spec_;
@@ -95,6 +104,7 @@ class Simulation {
   ParticleSet<D> ps_;
   CellGrid<D> grid_;
   ForceWorkspace<D> force_ws_;
+  SurfaceFields<D> sf_;
   double t_ = 0.0;
   double stop_time_ = 0.0;
   std::int64_t step_ = 0;

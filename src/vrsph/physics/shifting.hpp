@@ -1,0 +1,37 @@
+// Particle shifting (PHYSICS.md section 4), applied in the corrector from the half-step positions:
+//   grad C_i = sum_j V_j grad_i W_ij,  div r_i = -sum_j V_j r_ij . grad_i W_ij (~D in the bulk)
+//   Skillen et al. (2013, CMAME 265:163): dr_i = -A h |v_i| dt grad C_i   (A = 2)
+//   Lind et al. (2012, JCP 231:1499):      dr_i = -A h^2 grad C_i          (A = 0.05 here)
+// Free surface (both): dr_i = 0 if div r_i < T, else dr_i *= (div r_i - T)/(D - T), T = 1.5 (2D),
+// 2.75 (3D); then each component is clamped to +-0.1 dp. Fields are not Taylor-corrected.
+#pragma once
+
+#include <algorithm>
+
+#include "vrsph/core/vec.hpp"
+#include "vrsph/setup/case_spec.hpp"
+
+namespace vrsph {
+
+struct ShiftingParams {
+  ShiftingModel model = ShiftingModel::none;
+  double coefficient = 0.0;  // A
+  double threshold = 1.5;    // T
+  double h = 0.0;
+  double dp = 0.0;
+};
+
+template <int D>
+inline Vec<D> shifting_displacement(const ShiftingParams& s, const Vec<D>& grad_c, double div_r,
+                                    double speed, double dt) {
+  if (s.model == ShiftingModel::none || div_r < s.threshold) return Vec<D>{};
+  const double scale = s.model == ShiftingModel::lind ? s.coefficient * s.h * s.h
+                                                      : s.coefficient * s.h * speed * dt;
+  const double surface = (div_r - s.threshold) / (D - s.threshold);
+  Vec<D> dr = grad_c * (-scale * surface);
+  const double cap = 0.1 * s.dp;
+  for (int k = 0; k < D; ++k) dr[k] = std::clamp(dr[k], -cap, cap);
+  return dr;
+}
+
+}  // namespace vrsph

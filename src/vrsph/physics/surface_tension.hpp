@@ -1,0 +1,62 @@
+// Single-phase surface tension of Cen, Fourtakas, Lind & Rogers (2024, Comput. Phys. Commun.
+// 295:109012), as extended to variable resolution by Lee et al. (poster, shared/seed), written out
+// in PHYSICS.md section 3. Per particle i (fluid only), in three neighbour passes:
+//  1. M_i = sum_j V_j (r_j - r_i) (x) grad_i W_ij  (~ I in the bulk), L_i = M_i^-1,
+//     lambda_i = smallest eigenvalue of M_i (~1 inside, ~0.5 on a flat surface);
+//  2. grad lambda_i = L_i sum_j (lambda_j - lambda_i) V_j grad_i W_ij   if lambda_i >= 0.7,
+//                     L_i sum_j lambda_j V_j grad_i W_ij                 otherwise;
+//     n_i = -grad lambda_i / |grad lambda_i| if |grad lambda_i| > eps lambda_i / h, else 0;
+//  3. kappa_i = sum_j S_ij (n_j - n_i) . (L_i grad_i W_ij) V_j, S_ij = 1 when both normals are
+//     non-zero and n_i . n_j >= cos(alpha_t) (-1/2 in 2D, -1/3 in 3D);
+//     phi_i = 1 / (2 sum_j W_ij V_j), delta_i = 2 max(1, phi_i) |sum_j grad_i W_ij V_j|,
+//     a_st,i = -sigma kappa_i n_i delta_i / rho_i.
+// The functions below are the per-particle pieces; the passes are in solver/surface_pass.cpp.
+#pragma once
+
+#include <cmath>
+
+#include "vrsph/core/mat.hpp"
+#include "vrsph/core/vec.hpp"
+
+namespace vrsph {
+
+// Below this smallest eigenvalue M_i is too close to singular to invert (an isolated particle or
+// a thin filament); L_i = I is used instead.
+inline constexpr double kMinInvertibleLambda = 0.1;
+
+template <int D>
+inline Mat<D> correction_from_m(const Mat<D>& m, double lambda) {
+  return lambda >= kMinInvertibleLambda ? inverse(m) : Mat<D>::identity();
+}
+
+// Unit outward normal from the corrected gradient of lambda, or zero when the gradient is too
+// weak to define one (|grad lambda| <= eps lambda / h).
+template <int D>
+inline Vec<D> normal_from_lambda_gradient(const Vec<D>& grad_lambda, double lambda, double eps,
+                                          double h) {
+  const double g = norm(grad_lambda);
+  if (!(g > eps * lambda / h) || g == 0.0) return Vec<D>{};
+  return grad_lambda * (-1.0 / g);
+}
+
+// cos(alpha_t) of the curvature filter S_ij.
+template <int D>
+constexpr double curvature_filter_cos() {
+  return D == 2 ? -0.5 : -1.0 / 3.0;
+}
+
+// Surface delta of the single-phase colour function: 2 max(1, phi) |grad C|, phi = 1/(2 shepard).
+// The factor 2 restores the missing gas half of |grad C| across a free surface.
+inline double surface_delta(double grad_c_norm, double shepard) {
+  const double phi = 1.0 / (2.0 * shepard);
+  return 2.0 * std::max(1.0, phi) * grad_c_norm;
+}
+
+// CSF acceleration -sigma kappa n delta / rho.
+template <int D>
+inline Vec<D> csf_acceleration(double sigma, double kappa, const Vec<D>& n, double delta,
+                               double rho) {
+  return n * (-sigma * kappa * delta / rho);
+}
+
+}  // namespace vrsph

@@ -1,0 +1,41 @@
+// Neighbour passes of the surface-tension model (physics/surface_tension.hpp) and the sums that
+// particle shifting needs (physics/shifting.hpp). Gather loops: each fluid particle writes only
+// its own entries, so results do not depend on the thread count. Wall particles get zeros.
+#pragma once
+
+#include <vector>
+
+#include "vrsph/core/mat.hpp"
+#include "vrsph/particles/cell_grid.hpp"
+#include "vrsph/particles/particles.hpp"
+#include "vrsph/solver/params.hpp"
+
+namespace vrsph {
+
+template <int D>
+struct SurfaceFields {
+  std::vector<double> lambda;    // smallest eigenvalue of M_i
+  std::vector<Mat<D>> l_corr;    // L_i = M_i^-1 (or I)
+  std::vector<Vec<D>> grad_c;    // sum_j V_j grad_i W_ij
+  std::vector<double> div_r;     // -sum_j V_j r_ij . grad_i W_ij
+  std::vector<double> shepard;   // sum_j V_j W_ij, self included
+  std::vector<Vec<D>> normal;    // unit outward normal, or 0
+  std::vector<double> curvature; // kappa_i
+  std::vector<Vec<D>> acc_st;    // surface-tension acceleration
+
+  void resize(std::size_t n);
+};
+
+// Pass 1: M_i (and lambda_i, L_i), grad C_i, div r_i and the Shepard sum, over fluid and wall
+// neighbours (walls give support, so a wall is not mistaken for a free surface).
+template <int D>
+void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                  SurfaceFields<D>& sf);
+
+// Passes 2 and 3: normals from the corrected gradient of lambda, filtered curvature and the CSF
+// acceleration, over fluid neighbours. Needs surface_sums first.
+template <int D>
+void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                           const CellGrid<D>& grid, SurfaceFields<D>& sf);
+
+}  // namespace vrsph
