@@ -71,11 +71,10 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
 }
 
 template <int D>
-void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
-                           const CellGrid<D>& grid, SurfaceFields<D>& sf) {
+void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                     SurfaceFields<D>& sf) {
   const auto n = static_cast<std::int64_t>(ps.size());
   const auto& k = prm.kernel;
-  // Pass 2: normals.
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -90,7 +89,13 @@ void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
     sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i,
                                                   prm.normal_epsilon, prm.h);
   }
-  // Pass 3: curvature and force.
+}
+
+template <int D>
+void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                             const CellGrid<D>& grid, SurfaceFields<D>& sf) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+  const auto& k = prm.kernel;
   constexpr double cos_t = curvature_filter_cos<D>();
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t ii = 0; ii < n; ++ii) {
@@ -117,6 +122,17 @@ template struct SurfaceFields<2>;
 template struct SurfaceFields<3>;
 template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, SurfaceFields<2>&);
 template void surface_sums<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, SurfaceFields<3>&);
+template <int D>
+void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                           const CellGrid<D>& grid, SurfaceFields<D>& sf) {
+  surface_normals(prm, ps, grid, sf);
+  surface_curvature_force(prm, ps, grid, sf);
+}
+
+template void surface_normals<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, SurfaceFields<2>&);
+template void surface_normals<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, SurfaceFields<3>&);
+template void surface_curvature_force<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, SurfaceFields<2>&);
+template void surface_curvature_force<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, SurfaceFields<3>&);
 template void surface_tension_force<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, SurfaceFields<2>&);
 template void surface_tension_force<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, SurfaceFields<3>&);
 

@@ -32,8 +32,18 @@ template <int D>
 void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                   SurfaceFields<D>& sf);
 
-// Passes 2 and 3: normals from the corrected gradient of lambda, filtered curvature and the CSF
-// acceleration, over fluid neighbours. Needs surface_sums first.
+// Pass 2: normals from the corrected gradient of lambda (fluid neighbours). Needs surface_sums.
+template <int D>
+void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                     SurfaceFields<D>& sf);
+
+// Pass 3: filtered curvature and the CSF acceleration from the normals in sf (fluid neighbours).
+// Tests may impose sf.normal before calling it.
+template <int D>
+void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                             const CellGrid<D>& grid, SurfaceFields<D>& sf);
+
+// Passes 2 and 3 together.
 template <int D>
 void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
                            const CellGrid<D>& grid, SurfaceFields<D>& sf);
