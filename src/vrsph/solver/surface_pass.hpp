@@ -3,6 +3,7 @@
 // its own entries, so results do not depend on the thread count. Wall particles get zeros.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "vrsph/core/mat.hpp"
@@ -23,7 +24,12 @@ struct SurfaceFields {
   std::vector<double> curvature; // kappa_i
   std::vector<Vec<D>> acc_st;    // surface-tension acceleration
 
+  // Positions and volumes as separate arrays, for the vectorised neighbour loops.
+  std::array<std::vector<double>, D> x;
+  std::vector<double> vol;
+
   void resize(std::size_t n);
+  void pack(const ParticleSet<D>& ps);
 };
 
 // Pass 1: M_i (and lambda_i, L_i), grad C_i, div r_i and the Shepard sum, over fluid and wall
