@@ -1,0 +1,235 @@
+#!/usr/bin/env bash
+# PNG plots of one snapshot of a finished (or stopped) run. Needs csv snapshots (output.formats with
+# "csv") and gnuplot; bash + awk only otherwise.
+#   scripts/plot_run.sh OUT_DIR [INDEX]      (INDEX: snapshot number, default the last one)
+# Writes, in OUT_DIR (NNNN = INDEX, 4 digits):
+#   plot_line_NNNN.png      pressure along the first [[output.line]] against s, with the Laplace
+#                           value (case.toml [analysis] laplace_pressure) as a horizontal line
+#   plot_pressure_NNNN.png  particles at (x, y) coloured by p (3D: the slice |z| < dp); walls grey
+#   plot_lambda_NNNN.png    the same coloured by lambda (the surface-tension eigenvalue), if written
+#   plot_max_speed.png      series.csv max_speed against t (the parasitic-velocity measure)
+# Columns are found by their header names, so 2D and 3D files both work.
+set -euo pipefail
+
+usage() {
+  echo "usage: plot_run.sh OUT_DIR [INDEX]" >&2
+  echo "  plots snapshot INDEX (default: the last) of the run in OUT_DIR into OUT_DIR/plot_*.png" >&2
+}
+die() { echo "plot_run.sh: $*" >&2; exit 1; }
+
+if [ $# -lt 1 ] || [ $# -gt 2 ]; then usage; exit 2; fi
+case "$1" in -h|--help) usage; exit 0 ;; esac
+dir=${1%/}
+[ -d "$dir" ] || die "$dir: no such folder"
+command -v gnuplot > /dev/null || die "gnuplot not found (scripts/setup.sh installs it)"
+
+# Snapshot index: given, or the largest NNNN of particles_NNNN.csv.
+if [ $# -ge 2 ]; then
+  [[ "$2" =~ ^[0-9]+$ ]] || die "INDEX must be a non-negative integer, not '$2'"
+  idx=$((10#$2))
+else
+  last=""
+  for f in "$dir"/particles_[0-9]*.csv; do
+    [ -f "$f" ] || continue
+    k=$(basename "$f" .csv); k=${k#particles_}
+    [[ "$k" =~ ^[0-9]+$ ]] || continue
+    if [ -z "$last" ] || [ $((10#$k)) -gt $((10#$last)) ]; then last=$k; fi
+  done
+  [ -n "$last" ] || die "$dir: no particles_NNNN.csv (was the run written with output.formats = [..., \"csv\"]?)"
+  idx=$((10#$last))
+fi
+nnnn=$(printf "%04d" "$idx")
+parts="$dir/particles_$nnnn.csv"
+[ -f "$parts" ] || die "$parts: not found"
+
+# Settings from the resolved case.toml: value of KEY in [SECTION] (first table of that name for an
+# array of tables such as [[output.line]]); empty when absent.
+case_toml="$dir/case.toml"
+toml_get() {  # SECTION KEY
+  [ -f "$case_toml" ] || return 0
+  awk -v want="$1" -v key="$2" '
+    /^[ \t]*\[/ { s = $0; gsub(/[][ \t]/, "", s); sub(/#.*/, "", s); n[s]++; sec = s; next }
+    sec == want && n[sec] == 1 {
+      line = $0; sub(/#.*/, "", line)
+      if (match(line, "^[ \t]*" key "[ \t]*=")) {
+        v = substr(line, RLENGTH + 1); gsub(/^[ \t]+|[ \t]+$/, "", v); gsub(/"/, "", v)
+        print v; exit
+      }
+    }' "$case_toml"
+}
+[ -f "$case_toml" ] || echo "plot_run.sh: $case_toml not found: no Laplace line, no dp" >&2
+dim=$(toml_get case dimension)
+if [ -z "$dim" ]; then  # no case.toml: 3D when the particle file has a z column
+  dim=$(head -n 1 "$parts" | awk -F, '{ d = 2; for (i = 1; i <= NF; i++) if ($i == "z") d = 3; print d }')
+fi
+dp=$(toml_get resolution dp)
+laplace=$(toml_get analysis laplace_pressure)
+case_name=$(toml_get case name); case_name=${case_name:-$(basename "$dir")}
+interval=$(toml_get output interval)
+end_time=$(toml_get case end_time)
+
+# Time of the snapshot: from particles.pvd, else INDEX x interval (the last one at the end time).
+t=""
+if [ -f "$dir/particles.pvd" ]; then
+  t=$(sed -n "s/.*timestep=\"\([^\"]*\)\".*file=\"particles_$nnnn\.vtp\".*/\1/p" "$dir/particles.pvd")
+fi
+if [ -z "$t" ] && [ -n "$interval" ]; then
+  t=$(awk -v k="$idx" -v dt="$interval" -v te="${end_time:-1e300}" \
+      'BEGIN { t = k * dt; if (t > te) t = te; printf "%.6g", t }')
+fi
+tlabel=${t:+t = $t s}; tlabel=${tlabel:-snapshot $nnnn}
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# ---------------------------------------------------------------------------------------------
+# 1. Pressure along the first line.
+line_name=$(toml_get output.line name)
+line_file=""
+[ -n "$line_name" ] && [ -f "$dir/line_${line_name}_$nnnn.csv" ] && line_file="$dir/line_${line_name}_$nnnn.csv"
+if [ -z "$line_file" ]; then  # no case.toml: the first line file of this snapshot, by name
+  for f in "$dir"/line_*_"$nnnn".csv; do
+    [ -f "$f" ] || continue
+    line_file=$f
+    line_name=$(basename "$f" "_$nnnn.csv"); line_name=${line_name#line_}
+    break
+  done
+fi
+if [ -z "$line_file" ]; then
+  echo "plot_run.sh: no line_<name>_$nnnn.csv in $dir: line plot skipped" >&2
+else
+  # s and p by header name -> "s p" rows
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
+                     if (!("s" in c) || !("p" in c)) { print "no s or p column" > "/dev/stderr"; exit 1 }
+                     next }
+           { print $c["s"], $c["p"] }' "$line_file" > "$tmp/line.dat" \
+    || die "$line_file: header lacks s or p"
+  npts=$(wc -l < "$tmp/line.dat")
+  ref_plot=""
+  mean=$(awk '{ s += $2; n++ } END { if (n) printf "%.4g", s / n }' "$tmp/line.dat")
+  ref_title=" (mean of all points ${mean:-?} Pa)"
+  if [ -n "$laplace" ]; then
+    ref_plot=", $laplace with lines lw 2 dt 2 lc rgb \"#d62728\" title \"Laplace $laplace Pa\""
+  fi
+  if [ "$npts" -eq 0 ]; then
+    echo "plot_run.sh: $line_file has no particles (no particle within dp/2 of the segment): line plot skipped" >&2
+  else
+    gnuplot <<GP
+set terminal pngcairo size 900,560 noenhanced
+set output "$dir/plot_line_$nnnn.png"
+set grid
+set key outside bottom center horizontal
+set xlabel "s along line '$line_name' (m)"
+set ylabel "p (Pa)"
+set title "$case_name: pressure along '$line_name', $tlabel, $npts particles$ref_title"
+plot "$tmp/line.dat" using 1:2 with linespoints pt 7 ps 0.6 lw 1 lc rgb "#1f77b4" title "particles"$ref_plot
+GP
+    echo "wrote $dir/plot_line_$nnnn.png"
+  fi
+fi
+
+# ---------------------------------------------------------------------------------------------
+# 2./3. Particles coloured by a field. "kind x y field" rows; 3D: the slice |z| < dp.
+# slice_of FIELD -> writes $tmp/fluid.dat (fluid + buffer) and $tmp/wall.dat; fails if no column.
+slice_of() {
+  awk -F, -v f="$1" -v dim="$dim" -v dp="${dp:-0}" -v out="$tmp" '
+    NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
+              if (!("x" in c) || !("y" in c) || !("kind" in c) || !(f in c)) exit 3
+              hz = ("z" in c); next }
+    {
+      if (hz && dim == 3) { z = $c["z"] + 0; if (dp > 0 && (z < 0 ? -z : z) >= dp) next }
+      if ($c["kind"] == "wall") print $c["x"], $c["y"] > (out "/wall.dat")
+      else print $c["x"], $c["y"], $c[f], ($c["kind"] == "buffer" ? 1 : 0) > (out "/fluid.dat")
+    }' "$parts"
+}
+
+# Colour range: 1st to 99th percentile of the field over fluid particles, so that a few spikes at
+# the surface do not wash out the interior (the title says so). FIELD_MIN/MAX fix it instead.
+plot_field() {  # FIELD LABEL FILE CBMIN CBMAX (CBMIN/CBMAX empty = percentiles)
+  local field=$1 label=$2 png=$3 lo=$4 hi=$5
+  rm -f "$tmp/fluid.dat" "$tmp/wall.dat"
+  if ! slice_of "$field"; then return 3; fi
+  touch "$tmp/fluid.dat" "$tmp/wall.dat"
+  local n nw
+  n=$(wc -l < "$tmp/fluid.dat"); nw=$(wc -l < "$tmp/wall.dat")
+  [ "$n" -gt 0 ] || { echo "plot_run.sh: no fluid particles to plot in $parts" >&2; return 0; }
+  local range_note=""
+  if [ -z "$lo" ]; then
+    read -r lo hi < <(awk '{ print $3 }' "$tmp/fluid.dat" | sort -g |
+      awk '{ v[NR] = $1 } END { a = int(0.01 * (NR - 1)) + 1; b = int(0.99 * (NR - 1)) + 1
+                                if (v[a] == v[b]) { v[a] -= 0.5; v[b] += 0.5 }
+                                print v[a], v[b] }')
+    range_note=", colours 1-99th percentile"
+  fi
+  local stats
+  stats=$(awk 'NR == 1 { mn = mx = $3 } { if ($3 < mn) mn = $3; if ($3 > mx) mx = $3 }
+               END { printf "min %.4g, max %.4g", mn, mx }' "$tmp/fluid.dat")
+  # Canvas height from the aspect of the data (900 px wide), point size from the particle spacing:
+  # about one dp wide on a plot of the data extent.
+  local ps height
+  read -r ps height < <(awk -v dp="${dp:-0}" 'NR == 1 { x0 = x1 = $1; y0 = y1 = $2 }
+         { if ($1 < x0) x0 = $1; if ($1 > x1) x1 = $1; if ($2 < y0) y0 = $2; if ($2 > y1) y1 = $2 }
+         END { e = x1 - x0; if (y1 - y0 > e) e = y1 - y0
+               if (dp <= 0 || e <= 0) { n = sqrt(NR); px = 760 / (n > 1 ? n : 1) } else px = 760 * dp / (e + 2 * dp)
+               ps = px / 7.5; if (ps < 0.12) ps = 0.12; if (ps > 2.5) ps = 2.5
+               a = (x1 > x0) ? (y1 - y0) / (x1 - x0) : 1; hgt = int(260 + 650 * a)
+               if (hgt < 450) hgt = 450; if (hgt > 1100) hgt = 1100; printf "%.3f %d\n", ps, hgt }' \
+         "$tmp/fluid.dat" "$tmp/wall.dat")
+  local where="all particles"
+  if [ "$dim" = 3 ]; then
+    if [ -n "$dp" ]; then where="slice |z| < dp = $dp m"; else where="all particles projected on x-y (no dp)"; fi
+  fi
+  local wall_plot="" buffer_plot=""
+  if awk '$4 == 1 { f = 1; exit } END { exit !f }' "$tmp/fluid.dat"; then
+    buffer_plot=", \"$tmp/fluid.dat\" using 1:(\$4 == 1 ? \$2 : 1/0):3 with points pt 6 ps $ps lc palette title \"buffer\""
+  fi
+  [ "$nw" -gt 0 ] && wall_plot="\"$tmp/wall.dat\" using 1:2 with points pt 7 ps $ps lc rgb \"#a0a0a0\" title \"wall\", "
+  gnuplot <<GP
+set terminal pngcairo size 900,$height noenhanced
+set output "$png"
+set size ratio -1
+set grid
+set key outside bottom center horizontal
+set xlabel "x (m)"
+set ylabel "y (m)"
+set cblabel "$label"
+set cbrange [$lo:$hi]
+set palette defined (0 "#30123b", 0.15 "#4662d7", 0.35 "#1ae4b6", 0.55 "#a2fc3c", 0.75 "#faba39", 0.9 "#e4460a", 1 "#7a0403")
+set title "$case_name: $label, $tlabel\n$where, $n particles, $stats$range_note"
+plot $wall_plot"$tmp/fluid.dat" using 1:(\$4 == 0 ? \$2 : 1/0):3 with points pt 7 ps $ps lc palette title "fluid"$buffer_plot
+GP
+  echo "wrote $png"
+}
+
+plot_field p "p (Pa)" "$dir/plot_pressure_$nnnn.png" "${P_MIN:-}" "${P_MAX:-}" \
+  || die "$parts: header lacks one of kind, x, y, p"
+if ! plot_field lambda "lambda (min eigenvalue of M)" "$dir/plot_lambda_$nnnn.png" \
+     "${LAMBDA_MIN:-0}" "${LAMBDA_MAX:-1.1}"; then
+  echo "plot_run.sh: $parts has no lambda column (surface tension off?): lambda plot skipped" >&2
+fi
+
+# ---------------------------------------------------------------------------------------------
+# 4. max_speed against t from series.csv.
+series="$dir/series.csv"
+if [ ! -f "$series" ]; then
+  echo "plot_run.sh: $series not found: max_speed plot skipped" >&2
+else
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
+                     ct = ("t" in c) ? c["t"] : 1; cv = ("max_speed" in c) ? c["max_speed"] : 8; next }
+           { print $ct, $cv }' "$series" > "$tmp/series.dat"
+  if [ "$(wc -l < "$tmp/series.dat")" -lt 1 ]; then
+    echo "plot_run.sh: $series has no rows: max_speed plot skipped" >&2
+  else
+    gnuplot <<GP
+set terminal pngcairo size 900,560 noenhanced
+set output "$dir/plot_max_speed.png"
+set grid
+set key top right
+set xlabel "t (s)"
+set ylabel "max speed over fluid particles (m/s)"
+set title "$case_name: maximum particle speed (parasitic currents for a drop at rest)"
+plot "$tmp/series.dat" using 1:2 with linespoints pt 7 ps 0.5 lw 2 lc rgb "#1f77b4" title "max_speed"
+GP
+    echo "wrote $dir/plot_max_speed.png"
+  fi
+fi
