@@ -90,3 +90,19 @@ TEST(PhysicsScope, UnimplementedModelsAreRefused) {
 
 }  // namespace
 }  // namespace vrsph
+
+namespace vrsph {
+namespace {
+
+// fluid_block.N.pressure starts the block at that pressure (its density from the EOS).
+TEST(PhysicsSetup, BlockInitialPressureSetsDensity) {
+  CaseSpec spec = load_case("droplet_2d.toml", {"resolution.dp=2e-4", "fluid_block.0.pressure=36.4"});
+  Simulation<2> sim(spec);
+  sim.update_pressure();
+  const auto& ps = sim.particles();
+  ASSERT_GT(ps.size(), 100u);
+  for (std::size_t i = 0; i < ps.size(); ++i) EXPECT_NEAR(ps.p[i], 36.4, 1e-9);
+}
+
+}  // namespace
+}  // namespace vrsph

@@ -30,7 +30,7 @@ constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
 constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
 constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon"};
 constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",  "min",
-                                                "max",   "fill",   "velocity"};
+                                                "max",   "fill",   "velocity", "pressure"};
 constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
 constexpr std::string_view kDomainKeys[] = {"min", "max", "max_lost_fraction"};
 constexpr std::string_view kRefinementKeys[] = {"min", "max", "dp_ratio", "buffer_width"};
@@ -162,6 +162,7 @@ FluidBlock parse_fluid_block(const TableReader& r, const CaseSpec& spec) {
   r.require("fill", b.fill != FillMode::rings || b.shape == BlockShape::circle,
             "\"rings\" needs shape = \"circle\" (2D only)");
   b.velocity = r.opt_vector("velocity", dim).value_or(Vec3d{});
+  b.pressure = r.opt_number("pressure").value_or(0.0);
   return b;
 }
 

@@ -109,6 +109,7 @@ void write_blocks(Writer& w, const CaseSpec& s) {
     }
     w.kv("fill", toml_quote(enum_name(kFillNames, b.fill)));
     w.kv("velocity", vec(b.velocity, dim), "m/s");
+    w.kv("pressure", num(b.pressure), "Pa, initial (density from the EOS)");
   }
   for (const auto& b : s.wall_blocks) {
     w.header("[[wall_block]]");

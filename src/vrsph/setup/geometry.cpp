@@ -105,6 +105,7 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
     const Vec<D> v = to_vec<D>(b.velocity);
     auto add = [&](const Vec<D>& x) {
       ps.push_back(next_id++, Kind::fluid, x, v, spec.density, mass);
+      out.initial_pressure.push_back(b.pressure);
     };
     if (b.shape == BlockShape::box) {
       for_each_node<D>(to_vec<D>(b.min), to_vec<D>(b.max), dp, add);
@@ -124,6 +125,7 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
   for (const WallBlock& w : spec.wall_blocks) {
     auto add = [&](const Vec<D>& x) {
       ps.push_back(next_id++, Kind::wall, x, Vec<D>{}, spec.density, mass);
+      out.initial_pressure.push_back(0.0);
     };
     if (w.shape == WallShape::tank) fill_tank<D>(to_vec<D>(w.min), to_vec<D>(w.max), w.layers, dp, add);
     else for_each_node<D>(to_vec<D>(w.min), to_vec<D>(w.max), dp, add);

@@ -8,6 +8,8 @@
 //    the vertical axis, sides on the other faces); box walls: a solid box of nodes.
 #pragma once
 
+#include <vector>
+
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/physics/eos.hpp"
 #include "vrsph/setup/case_spec.hpp"
@@ -18,6 +20,7 @@ template <int D>
 struct InitialSet {
   ParticleSet<D> particles;
   double fluid_height = 0.0;  // extent of the fluid along the vertical axis (for c0 = f sqrt(g H))
+  std::vector<double> initial_pressure;  // per particle: its fluid block's `pressure` (0: none)
 };
 
 // Positions, velocities and masses; densities are rho0 (see apply_hydrostatic_density).

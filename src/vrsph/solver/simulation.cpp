@@ -109,6 +109,11 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
                    prm_.h, spec.dp};
   prm_.dt_min = 0.05 * prm_.h / setup_.c0;
 
+  // Initial pressure of a fluid block (e.g. a droplet started at its Laplace pressure, as the
+  // poster does): the density that the EOS maps to it.
+  for (std::size_t i = 0; i < ps_.size(); ++i) {
+    if (init.initial_pressure[i] != 0.0) ps_.rho[i] = prm_.eos.density(init.initial_pressure[i]);
+  }
   if (spec.hydrostatic_initial_density && g > 0.0) {
     apply_hydrostatic_density<D>(ps_, prm_.gravity, spec.density, spec.dp, prm_.eos);
   }
