@@ -1,0 +1,49 @@
+// Droplet validation at the poster's resolution (issue #3), labelled `slow`: run by hand
+// (ctest -L slow, or the binary with --gtest_filter='SlowDroplet*'); results are recorded in
+// docs/validation.md. The assertion is the poster's figure, which this version does not reach yet
+// (see docs/validation.md): the test stays red until it does.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "case_util.hpp"
+#include "vrsph/analysis/laplace.hpp"
+#include "vrsph/output/line_profile.hpp"
+#include "vrsph/setup/geometry.hpp"
+#include "vrsph/solver/simulation.hpp"
+
+namespace vrsph {
+namespace {
+
+using test::load_case;
+
+// cases/droplet_2d.toml at dp = 5e-5 to t = 0.2 s: RMSE of the diameter pressure against 36.4 Pa.
+// Poster (DualSPHysics implementation): 0.4960 Pa; our goal 0.35 Pa. VRSPH_SLOW_SHIFTING=skillen
+// runs the Skillen variant.
+TEST(SlowDroplet, LaplaceRmseAtPosterResolution) {
+  const char* model = std::getenv("VRSPH_SLOW_SHIFTING");
+  std::vector<std::string> sets;
+  if (model != nullptr && std::string(model) == "skillen") {
+    sets = {"numerics.shifting.model=skillen", "numerics.shifting.coefficient=2.0"};
+  }
+  CaseSpec spec = load_case("droplet_2d.toml", sets);
+  Simulation<2> sim(spec);
+  while (sim.time() < spec.end_time) {
+    sim.set_stop_time(spec.end_time);
+    sim.step();
+  }
+  sim.update_pressure();
+  const OutputLine& line = spec.lines.front();
+  const auto samples = sample_line<2>(sim.particles(), {}, to_vec<2>(line.from), to_vec<2>(line.to),
+                                      0.5 * spec.dp);
+  std::vector<double> s, p;
+  for (const auto& x : samples) s.push_back(x.s), p.push_back(x.p);
+  const LaplaceError e = laplace_error(s, p, 36.4, sim.params().h);
+  std::printf("droplet_2d dp 5e-5 t 0.2: mean %.3f Pa, RMSE %.4f Pa (NRMSE %.5f), RMSE all %.4f\n",
+              e.mean_interior, e.rmse, e.nrmse, e.rmse_all);
+  EXPECT_NEAR(e.mean_interior, 36.4, 0.03 * 36.4);
+  EXPECT_LT(e.rmse, 0.4960);
+}
+
+}  // namespace
+}  // namespace vrsph
