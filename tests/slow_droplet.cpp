@@ -8,8 +8,6 @@
 
 #include "case_util.hpp"
 #include "vrsph/analysis/laplace.hpp"
-#include "vrsph/output/line_profile.hpp"
-#include "vrsph/setup/geometry.hpp"
 #include "vrsph/solver/simulation.hpp"
 
 namespace vrsph {
@@ -34,11 +32,7 @@ TEST(SlowDroplet, LaplaceRmseAtPosterResolution) {
   }
   sim.update_pressure();
   const OutputLine& line = spec.lines.front();
-  const auto samples = sample_line<2>(sim.particles(), {}, to_vec<2>(line.from), to_vec<2>(line.to),
-                                      0.5 * spec.dp);
-  std::vector<double> s, p;
-  for (const auto& x : samples) s.push_back(x.s), p.push_back(x.p);
-  const LaplaceError e = laplace_error(s, p, 36.4, sim.params().h);
+  const LaplaceError e = line_laplace_error<2>(sim.particles(), line, 36.4, sim.params().h, spec.dp);
   std::printf("droplet_2d dp 5e-5 t 0.2: mean %.3f Pa, RMSE %.4f Pa (NRMSE %.5f), RMSE all %.4f\n",
               e.mean_interior, e.rmse, e.nrmse, e.rmse_all);
   EXPECT_NEAR(e.mean_interior, 36.4, 0.03 * 36.4);

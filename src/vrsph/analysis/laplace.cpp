@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
+
+#include "vrsph/output/line_profile.hpp"
+#include "vrsph/setup/geometry.hpp"
 
 namespace vrsph {
 
@@ -32,5 +36,22 @@ LaplaceError laplace_error(std::span<const double> s, std::span<const double> p,
   e.nrmse = e.rmse / expected;
   return e;
 }
+
+template <int D>
+LaplaceError line_laplace_error(const ParticleSet<D>& ps, const OutputLine& line, double expected,
+                                double h, double dp) {
+  const auto samples = sample_line<D>(ps, {}, to_vec<D>(line.from), to_vec<D>(line.to), 0.5 * dp);
+  std::vector<double> s, p;
+  for (const auto& smp : samples) {
+    s.push_back(smp.s);
+    p.push_back(smp.p);
+  }
+  return laplace_error(s, p, expected, h);
+}
+
+template LaplaceError line_laplace_error<2>(const ParticleSet<2>&, const OutputLine&, double,
+                                            double, double);
+template LaplaceError line_laplace_error<3>(const ParticleSet<3>&, const OutputLine&, double,
+                                            double, double);
 
 }  // namespace vrsph

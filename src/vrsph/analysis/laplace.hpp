@@ -8,6 +8,9 @@
 #include <cstddef>
 #include <span>
 
+#include "vrsph/particles/particles.hpp"
+#include "vrsph/setup/case_spec.hpp"
+
 namespace vrsph {
 
 struct LaplaceError {
@@ -22,5 +25,11 @@ struct LaplaceError {
 // s: distance along the line of each sample, p: its pressure (same length).
 LaplaceError laplace_error(std::span<const double> s, std::span<const double> p, double expected,
                            double h);
+
+// The same for the particles of one level along an [[output.line]] (within dp/2 of it, as the
+// line profile files); ps.p must be current.
+template <int D>
+LaplaceError line_laplace_error(const ParticleSet<D>& ps, const OutputLine& line, double expected,
+                                double h, double dp);
 
 }  // namespace vrsph

@@ -125,14 +125,8 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
                        {"update", t.update}, {"checks", t.checks}};
   if (spec_.laplace_pressure && !spec_.lines.empty()) {
     const OutputLine& line = spec_.lines.front();
-    const auto samples = sample_line<D>(ps, {}, to_vec<D>(line.from), to_vec<D>(line.to),
-                                        0.5 * spec_.dp);
-    std::vector<double> s, p;
-    for (const auto& smp : samples) {
-      s.push_back(smp.s);
-      p.push_back(smp.p);
-    }
-    const LaplaceError e = laplace_error(s, p, *spec_.laplace_pressure, sim.params().h);
+    const LaplaceError e = line_laplace_error<D>(ps, line, *spec_.laplace_pressure,
+                                                 sim.params().h, spec_.dp);
     j["laplace"] = {{"expected", e.expected}, {"mean_interior", e.mean_interior},
                     {"rmse", e.rmse},         {"nrmse", e.nrmse},
                     {"rmse_all", e.rmse_all}, {"n_points", e.n_points},

@@ -280,32 +280,33 @@ template <int D>
 void Simulation<D>::check_state() const {
   const double rho0 = prm_.eos.rho0;
   const auto n = static_cast<std::int64_t>(ps_.size());
-  auto bad = [&](std::int64_t i) {
+  auto finite = [&](std::size_t i) {
+    return std::isfinite(ps_.rho[i]) && std::isfinite(norm2(ps_.vel[i])) &&
+           std::isfinite(norm2(ps_.pos[i]));
+  };
+  auto bad = [&](std::size_t i) {
     if (ps_.kind[i] == Kind::wall) return false;
-    const bool finite = std::isfinite(ps_.rho[i]) && std::isfinite(norm2(ps_.vel[i])) &&
-                        std::isfinite(norm2(ps_.pos[i]));
-    return !finite || ps_.rho[i] < 0.5 * rho0 || ps_.rho[i] > 2.0 * rho0;
+    return !finite(i) || ps_.rho[i] < 0.5 * rho0 || ps_.rho[i] > 2.0 * rho0;
   };
   std::int64_t first = n;  // lowest failing index: the same report for any thread count
 #pragma omp parallel for schedule(static) reduction(min : first)
   for (std::int64_t i = 0; i < n; ++i) {
-    if (bad(i)) first = std::min(first, i);
+    if (bad(static_cast<std::size_t>(i))) first = std::min(first, i);
   }
   if (first < n) {
     const auto i = static_cast<std::size_t>(first);
     const auto& x = ps_.pos[i];
-    const bool finite = std::isfinite(ps_.rho[i]) && std::isfinite(norm2(ps_.vel[i])) &&
-                        std::isfinite(norm2(x));
+    const bool is_finite = finite(i);
     std::string where = fmt::format("({:.6g}", x[0]);
     for (int k = 1; k < D; ++k) where += fmt::format(", {:.6g}", x[k]);
     where += ")";
     throw InstabilityError(fmt::format(
         "unstable at t = {:.6g} s, step {}: fluid particle id {} at {} {} (check: {})", t_, step_,
         ps_.id[i], where,
-        finite ? fmt::format("has density {:.6g} kg/m^3 outside [{:.6g}, {:.6g}]", ps_.rho[i],
-                             0.5 * rho0, 2.0 * rho0)
-               : std::string("has a non-finite position, velocity or density"),
-        finite ? "density" : "finite"));
+        is_finite ? fmt::format("has density {:.6g} kg/m^3 outside [{:.6g}, {:.6g}]", ps_.rho[i],
+                                0.5 * rho0, 2.0 * rho0)
+                  : std::string("has a non-finite position, velocity or density"),
+        is_finite ? "density" : "finite"));
   }
   if (dt_next_ < prm_.dt_min) {
     throw InstabilityError(fmt::format(
