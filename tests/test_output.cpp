@@ -247,7 +247,7 @@ TEST(OutputPvd, TimeOrderReloadAndResume) {
   EXPECT_EQ(PvdCollection::load(dir.path / "missing.pvd").entries().size(), 0u);
 }
 
-TEST(OutputLine, SelectsNearbyNonWallParticlesSortedByS) {
+TEST(OutputLine, SelectsNearbyFluidParticlesSortedByS) {
   TempDir dir;
   ParticleSet<2> ps;
   const Vec<2> zero{{0, 0}};
@@ -255,13 +255,14 @@ TEST(OutputLine, SelectsNearbyNonWallParticlesSortedByS) {
   ps.push_back(1, Kind::fluid, {{0.5, 0.05}}, zero, 1000, 1);   // in, s = 1.5
   ps.push_back(2, Kind::fluid, {{-0.9, -0.1}}, zero, 1000, 1);  // in (on the edge), s = 0.1
   ps.push_back(3, Kind::wall, {{0.0, 0.0}}, zero, 1000, 1);     // wall: out
-  ps.push_back(4, Kind::buffer, {{0.0, 0.0}}, zero, 1000, 1);   // in, s = 1
+  ps.push_back(4, Kind::fluid, {{0.0, 0.0}}, zero, 1000, 1);    // in (level 1), s = 1
   ps.push_back(5, Kind::fluid, {{0.0, 0.11}}, zero, 1000, 1);   // too far: out
   ps.push_back(6, Kind::fluid, {{1.05, 0.0}}, zero, 1000, 1);   // beyond the end: out
   ps.push_back(7, Kind::fluid, {{-1.01, 0.0}}, zero, 1000, 1);  // before the start: out
   ps.push_back(8, Kind::fluid, {{1.0, 0.0}}, zero, 1000, 1);    // at the end, s = 2
-  ps.p = {10, 20, 30, 40, 50, 60, 70, 80};
-  const std::vector<std::uint8_t> level{0, 0, 0, 1, 0, 0, 0, 0};
+  ps.push_back(9, Kind::buffer, {{0.2, 0.0}}, zero, 1000, 1);   // buffer mirrors: out
+  ps.p = {10, 20, 30, 40, 50, 60, 70, 80, 90};
+  const std::vector<std::uint8_t> level{0, 0, 0, 1, 0, 0, 0, 0, 1};
   const Vec<2> from{{-1, 0}}, to{{1, 0}};
   const auto samples = sample_line<2>(ps, level, from, to, 0.1);
   std::vector<std::uint64_t> ids;

@@ -12,12 +12,17 @@ namespace vrsph {
 
 LaplaceError laplace_error(std::span<const double> s, std::span<const double> p, double expected,
                            double h) {
+  return laplace_error(s, p, expected, h, h);
+}
+
+LaplaceError laplace_error(std::span<const double> s, std::span<const double> p, double expected,
+                           double h_first, double h_last) {
   if (s.size() != p.size()) throw std::invalid_argument("laplace_error: size mismatch");
   LaplaceError e;
   e.expected = expected;
   if (s.empty()) return e;
   const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
-  const double s_min = *lo + 2.0 * h, s_max = *hi - 2.0 * h;
+  const double s_min = *lo + 2.0 * h_first, s_max = *hi - 2.0 * h_last;
   double sum_all = 0.0, sum_in = 0.0, sum_p = 0.0;
   for (std::size_t k = 0; k < s.size(); ++k) {
     const double d2 = (p[k] - expected) * (p[k] - expected);

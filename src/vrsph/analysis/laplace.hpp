@@ -25,6 +25,10 @@ struct LaplaceError {
 // s: distance along the line of each sample, p: its pressure (same length).
 LaplaceError laplace_error(std::span<const double> s, std::span<const double> p, double expected,
                            double h);
+// The same with the 2h margin taken with a different h at each end (variable resolution: the
+// line's ends may lie in different levels).
+LaplaceError laplace_error(std::span<const double> s, std::span<const double> p, double expected,
+                           double h_first, double h_last);
 
 // The same for the particles of one level along an [[output.line]] (within dp/2 of it, as the
 // line profile files); ps.p must be current.

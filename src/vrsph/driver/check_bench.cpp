@@ -50,7 +50,7 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   const double accounted = t.sort + t.surface + t.forces + t.update + t.checks;
   nlohmann::json j;
   j["case"] = spec.name;
-  j["particles"] = sim.particles().size();
+  j["particles"] = sim.total_particles();
   j["threads"] = threads;
   j["sim_time"] = sim.time();
   j["steps"] = sim.step_count();
@@ -67,7 +67,7 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   const double anchor = 1.54e6;  // DualSPHysics 5.4 CPU, 2 threads, same case and machine type
   j["ratio_to_dualsphysics"] = c.particle_steps / wall / anchor;
   fmt::print("bench {}: {} particles, {} steps to t = {:g} s on {} thread(s) in {:.2f} s\n",
-             spec.name, sim.particles().size(), sim.step_count(), sim.time(), threads, wall);
+             spec.name, sim.total_particles(), sim.step_count(), sim.time(), threads, wall);
   fmt::print("  {:.3f} M particle-steps/s ({:.2f}x DualSPHysics' 1.54 M), {:.1f} M pair "
              "interactions/s, {:.1f} steps/s\n",
              c.particle_steps / wall / 1e6, c.particle_steps / wall / anchor, c.pairs / wall / 1e6,

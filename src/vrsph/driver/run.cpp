@@ -56,7 +56,22 @@ void prepare_out_dir(const std::filesystem::path& dir, bool force) {
 
 template <int D>
 void restore_from_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
-  ck.get_particles<D>(0, sim.particles());
+  const auto levels = static_cast<std::size_t>(ck.i64("levels").at(0));
+  if (levels != sim.level_count()) {
+    throw CaseError(fmt::format(
+        "--resume: the checkpoint holds {} level(s) but the case makes {} ([[refinement]] changed)",
+        levels, sim.level_count()));
+  }
+  for (std::size_t l = 0; l < levels; ++l) {
+    auto& L = sim.level(l);
+    ck.get_particles<D>(static_cast<int>(l), L.ps);
+    if (levels > 1) {
+      const auto& m = ck.f64(fmt::format("level{}.point_mass", l));
+      if (m.size() != L.mass_points.size())
+        throw CaseError("--resume: the checkpoint's mass points do not match the case's refinement boxes");
+      for (std::size_t q = 0; q < m.size(); ++q) L.mass_points[q].mass = m[q];
+    }
+  }
   const auto& cv = ck.u64("counters");
   RunCounters c;
   c.particle_steps = cv.at(0);
@@ -64,6 +79,17 @@ void restore_from_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
   c.lost_fluid = cv.at(2);
   for (std::size_t k = 0; k < 4; ++k) c.dt_limit_counts[k] = cv.at(3 + k);
   c.wall_seconds = ck.scalar("wall_seconds");
+  if (levels > 1) {
+    const auto& vc = ck.u64("vres_counts");
+    const auto& vm = ck.f64("vres_masses");
+    c.created = vc.at(0);
+    c.deleted = vc.at(1);
+    c.next_id = vc.at(2);
+    c.created_mass = vm.at(0);
+    c.deleted_mass = vm.at(1);
+  } else {
+    c.next_id = sim.counters().next_id;
+  }
   sim.restore(ck.scalar("time"), ck.i64("step").at(0), ck.scalar("dt_next"), c, cv.at(7));
   sim.resort();
 }
@@ -89,7 +115,7 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
   if (!opt.quiet) {
     fmt::print("vrsph: {} ({}D): {} fluid + {} wall particles, dp = {:g} m, h = {:g} m, c0 = {:.4g} m/s, "
                "{} thread(s), output in {}{}\n",
-               spec.name, D, sim.particles().count(Kind::fluid), sim.particles().count(Kind::wall),
+               spec.name, D, sim.count(Kind::fluid), sim.count(Kind::wall),
                spec.dp, sim.params().h, sim.setup().c0, threads, opt.out_dir.string(),
                opt.resume ? fmt::format(" (resumed at t = {:g} s)", sim.time()) : "");
     std::fflush(stdout);

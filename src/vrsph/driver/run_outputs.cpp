@@ -11,8 +11,9 @@
 namespace vrsph {
 namespace {
 
-SeriesWriter open_series(const std::filesystem::path& path, bool fresh, double t) {
-  return fresh ? SeriesWriter(path) : SeriesWriter::resume(path, t);
+SeriesWriter open_series(const std::filesystem::path& path, bool fresh, double t,
+                         std::vector<std::string> extra) {
+  return fresh ? SeriesWriter(path, std::move(extra)) : SeriesWriter::resume(path, t, std::move(extra));
 }
 
 PvdCollection open_pvd(const std::filesystem::path& path, bool fresh, double t) {
@@ -20,28 +21,63 @@ PvdCollection open_pvd(const std::filesystem::path& path, bool fresh, double t) 
 }
 
 // Surface-tension and shifting fields as extra particle columns: lambda, normal, curvature
-// (recomputed on the current state) and the last shifting displacement.
+// (recomputed on the current state) and the last shifting displacement; levels one after the
+// other, in the order of the merged snapshot.
 template <int D>
 std::vector<ExtraField> surface_extras(Simulation<D>& sim) {
   std::vector<ExtraField> out;
   if (!sim.has_surface_fields()) return out;
-  const SurfaceFields<D>& sf = sim.surface_fields_now();
-  const auto& ps = sim.particles();
-  const std::size_t n = ps.size();
-  ExtraField lambda{"lambda", 1, sf.lambda};
-  ExtraField normal{"normal", D, std::vector<double>(n * D)};
-  ExtraField curvature{"curvature", 1, sf.curvature};
-  ExtraField shift{"shift", D, std::vector<double>(n * D)};
-  for (std::size_t i = 0; i < n; ++i)
-    for (int k = 0; k < D; ++k) {
-      normal.values[i * D + k] = sf.normal[i][k];
-      shift.values[i * D + k] = ps.shift[i][k];
+  ExtraField lambda{"lambda", 1, {}};
+  ExtraField normal{"normal", D, {}};
+  ExtraField curvature{"curvature", 1, {}};
+  ExtraField shift{"shift", D, {}};
+  for (std::size_t l = 0; l < sim.level_count(); ++l) {
+    const SurfaceFields<D>& sf = sim.surface_fields_now(l);
+    const auto& ps = sim.level(l).ps;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      lambda.values.push_back(sf.lambda[i]);
+      curvature.values.push_back(sf.curvature.empty() ? 0.0 : sf.curvature[i]);
+      for (int k = 0; k < D; ++k) {
+        normal.values.push_back(sf.normal.empty() ? 0.0 : sf.normal[i][k]);
+        shift.values.push_back(ps.shift[i][k]);
+      }
     }
+  }
   out.push_back(std::move(lambda));
   out.push_back(std::move(normal));
   out.push_back(std::move(curvature));
   out.push_back(std::move(shift));
   return out;
+}
+
+// Series columns added with variable resolution: per-level counts and fluid masses, and the
+// particles created and deleted at the interfaces so far.
+std::vector<std::string> level_columns(std::size_t levels) {
+  std::vector<std::string> c;
+  if (levels < 2) return c;
+  for (std::size_t l = 0; l < levels; ++l) {
+    c.push_back(fmt::format("n_fluid_L{}", l));
+    c.push_back(fmt::format("n_buffer_L{}", l));
+    c.push_back(fmt::format("mass_fluid_L{}", l));
+  }
+  for (const char* n : {"created", "deleted", "created_mass", "deleted_mass"}) c.emplace_back(n);
+  return c;
+}
+
+// The particles (fluid only) within dp/2 of a line, dp of each level, all levels, sorted by s.
+template <int D>
+std::vector<LineSample<D>> sample_levels(const Simulation<D>& sim, const OutputLine& line) {
+  std::vector<LineSample<D>> all;
+  for (std::size_t l = 0; l < sim.level_count(); ++l) {
+    const auto& L = sim.level(l);
+    auto s = sample_line<D>(L.ps, {}, to_vec<D>(line.from), to_vec<D>(line.to), 0.5 * L.prm.dp);
+    for (auto& q : s) q.level = static_cast<int>(l);
+    all.insert(all.end(), s.begin(), s.end());
+  }
+  std::sort(all.begin(), all.end(), [](const LineSample<D>& a, const LineSample<D>& b) {
+    return a.s < b.s || (a.s == b.s && a.id < b.id);
+  });
+  return all;
 }
 
 }  // namespace
@@ -51,13 +87,21 @@ RunOutputs<D>::RunOutputs(const CaseSpec& spec, std::filesystem::path dir, bool 
     : spec_(spec),
       dir_(std::move(dir)),
       pvd_(open_pvd(dir_ / "particles.pvd", fresh, t)),
-      series_(open_series(dir_ / "series.csv", fresh, t)) {}
+      series_(open_series(dir_ / "series.csv", fresh, t, level_columns(spec.refinements.size() + 1))) {}
 
 template <int D>
 void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   sim.update_pressure();
-  const ParticleSet<D>& ps = sim.particles();
-  const std::span<const std::uint8_t> level;  // single level: all 0
+  const std::size_t nl = sim.level_count();
+  // All levels in one snapshot (the `level` column tells them apart).
+  MergedLevels<D> merged;
+  if (nl > 1) {
+    std::vector<const ParticleSet<D>*> sets;
+    for (std::size_t l = 0; l < nl; ++l) sets.push_back(&sim.level(l).ps);
+    merged = merge_levels<D>(sets);
+  }
+  const ParticleSet<D>& ps = nl > 1 ? merged.particles : sim.particles();
+  const std::span<const std::uint8_t> level(merged.level);  // empty: single level, all 0
   const std::vector<ExtraField> extra_fields = surface_extras(sim);
   const std::span<const ExtraField> extras(extra_fields);
   if (spec_.write_vtp) {
@@ -68,11 +112,29 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   }
   if (spec_.write_csv) write_particles_csv<D>(dir_ / snapshot_file_name(index, "csv"), ps, extras, level);
   for (const OutputLine& line : spec_.lines) {
-    write_line_profile<D>(dir_ / line_file_name(line.name, index), ps, level, to_vec<D>(line.from),
-                          to_vec<D>(line.to), 0.5 * spec_.dp);
+    const auto samples = sample_levels(sim, line);
+    write_line_samples<D>(dir_ / line_file_name(line.name, index), samples);
   }
-  series_.append(compute_series_row<D>(ps, sim.time(), static_cast<long>(sim.step_count()),
-                                       sim.dt_last()));
+  SeriesRow row;
+  for (std::size_t l = 0; l < nl; ++l) {
+    const SeriesRow r = compute_series_row<D>(sim.level(l).ps, sim.time(),
+                                              static_cast<long>(sim.step_count()), sim.dt_last());
+    if (l == 0) row = r;
+    else accumulate_series_row(row, r);
+    if (nl > 1) {
+      row.extra.push_back(static_cast<double>(r.n_fluid));
+      row.extra.push_back(static_cast<double>(r.n_buffer));
+      row.extra.push_back(r.mass_fluid);
+    }
+  }
+  const RunCounters& c = sim.counters();
+  if (nl > 1) {
+    row.extra.push_back(static_cast<double>(c.created));
+    row.extra.push_back(static_cast<double>(c.deleted));
+    row.extra.push_back(c.created_mass);
+    row.extra.push_back(c.deleted_mass);
+  }
+  series_.append(row);
   // Checkpoint: everything needed to continue bit for bit from this output time.
   Checkpoint ck;
   ck.put_scalar("time", sim.time());
@@ -80,14 +142,24 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   ck.put_scalar("dt_last", sim.dt_last());
   ck.put("step", std::vector<std::int64_t>{sim.step_count()});
   ck.put("output_index", std::vector<std::int64_t>{index});
-  const RunCounters& c = sim.counters();
   ck.put("counters", std::vector<std::uint64_t>{c.particle_steps, c.pairs, c.lost_fluid,
                                                 c.dt_limit_counts[0], c.dt_limit_counts[1],
                                                 c.dt_limit_counts[2], c.dt_limit_counts[3],
                                                 sim.initial_fluid()});
   ck.put_scalar("wall_seconds", c.wall_seconds);
-  ck.put("levels", std::vector<std::int64_t>{1});
-  ck.put_particles<D>(0, ps);
+  ck.put("levels", std::vector<std::int64_t>{static_cast<std::int64_t>(nl)});
+  for (std::size_t l = 0; l < nl; ++l) {
+    ck.put_particles<D>(static_cast<int>(l), sim.level(l).ps);
+    if (nl > 1) {
+      std::vector<double> masses;
+      for (const auto& mp : sim.level(l).mass_points) masses.push_back(mp.mass);
+      ck.put(fmt::format("level{}.point_mass", l), masses);
+    }
+  }
+  if (nl > 1) {
+    ck.put("vres_counts", std::vector<std::uint64_t>{c.created, c.deleted, c.next_id});
+    ck.put("vres_masses", std::vector<double>{c.created_mass, c.deleted_mass});
+  }
   ck.save(dir_ / "checkpoint.bin");
 }
 
@@ -96,7 +168,6 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
                                       double wall_seconds, int threads,
                                       const std::string& error) const {
   const RunCounters& c = sim.counters();
-  const ParticleSet<D>& ps = sim.particles();
   nlohmann::json j;
   j["completed"] = completed;
   if (!error.empty()) j["error"] = error;
@@ -108,9 +179,20 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
   j["particle_steps_per_second"] = wall_seconds > 0 ? c.particle_steps / wall_seconds : 0.0;
   j["pair_interactions_per_second"] = wall_seconds > 0 ? c.pairs / wall_seconds : 0.0;
   j["threads"] = threads;
-  j["n_particles"] = {{"fluid", ps.count(Kind::fluid)},
-                      {"wall", ps.count(Kind::wall)},
-                      {"buffer", ps.count(Kind::buffer)}};
+  j["n_particles"] = {{"fluid", sim.count(Kind::fluid)},
+                      {"wall", sim.count(Kind::wall)},
+                      {"buffer", sim.count(Kind::buffer)}};
+  if (sim.level_count() > 1) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (std::size_t l = 0; l < sim.level_count(); ++l) {
+      const auto& L = sim.level(l);
+      levels.push_back({{"dp", L.prm.dp}, {"h", L.prm.h}, {"fluid", L.ps.count(Kind::fluid)},
+                        {"buffer", L.ps.count(Kind::buffer)}, {"wall", L.ps.count(Kind::wall)}});
+    }
+    j["levels"] = levels;
+    j["vres"] = {{"created", c.created}, {"deleted", c.deleted},
+                 {"created_mass", c.created_mass}, {"deleted_mass", c.deleted_mass}};
+  }
   j["lost_fluid"] = c.lost_fluid;
   nlohmann::json limits;
   for (std::size_t k = 0; k < kDtLimitNames.size(); ++k) {
@@ -122,11 +204,19 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
   j["dp"] = spec_.dp;
   const PassTimes& t = sim.pass_times();
   j["pass_seconds"] = {{"sort", t.sort},     {"surface", t.surface}, {"forces", t.forces},
-                       {"update", t.update}, {"checks", t.checks}};
+                       {"update", t.update}, {"checks", t.checks}, {"coupling", t.coupling}};
   if (spec_.laplace_pressure && !spec_.lines.empty()) {
     const OutputLine& line = spec_.lines.front();
-    const LaplaceError e = line_laplace_error<D>(ps, line, *spec_.laplace_pressure,
-                                                 sim.params().h, spec_.dp);
+    const auto samples = sample_levels(sim, line);
+    std::vector<double> s, p;
+    for (const auto& q : samples) {
+      s.push_back(q.s);
+      p.push_back(q.p);
+    }
+    // 2h of the level at each end of the line
+    const double h_first = samples.empty() ? 0.0 : sim.level(samples.front().level).prm.h;
+    const double h_last = samples.empty() ? 0.0 : sim.level(samples.back().level).prm.h;
+    const LaplaceError e = laplace_error(s, p, *spec_.laplace_pressure, h_first, h_last);
     j["laplace"] = {{"expected", e.expected}, {"mean_interior", e.mean_interior},
                     {"rmse", e.rmse},         {"nrmse", e.nrmse},
                     {"rmse_all", e.rmse_all}, {"n_points", e.n_points},

@@ -22,7 +22,7 @@ std::vector<LineSample<D>> sample_line(const ParticleSet<D>& ps,
   const Vec<D> e = d * (1.0 / length);  // unit direction
   std::vector<LineSample<D>> out;
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.kind[i] == Kind::wall) continue;
+    if (ps.kind[i] != Kind::fluid) continue;  // walls, and buffers (they mirror another level)
     const Vec<D> r = ps.pos[i] - from;
     const double s = dot(r, e);
     if (s < 0.0 || s > length) continue;

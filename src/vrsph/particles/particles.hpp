@@ -73,6 +73,28 @@ struct ParticleSet {
     mass[n] = m;
   }
 
+  // Keeps the particles with keep[i] != 0, in order (persistent state only; derived arrays are
+  // resized and hold stale values until the next pass). Returns the number removed.
+  std::size_t compact(const std::vector<std::uint8_t>& keep) {
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < size(); ++i) {
+      if (!keep[i]) continue;
+      if (w != i) {
+        id[w] = id[i];
+        kind[w] = kind[i];
+        pos[w] = pos[i];
+        vel[w] = vel[i];
+        rho[w] = rho[i];
+        mass[w] = mass[i];
+        shift[w] = shift[i];
+      }
+      ++w;
+    }
+    const std::size_t removed = size() - w;
+    resize(w);
+    return removed;
+  }
+
   std::size_t count(Kind k) const {
     std::size_t c = 0;
     for (Kind x : kind) c += (x == k);

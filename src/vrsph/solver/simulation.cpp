@@ -9,6 +9,8 @@
 #include "vrsph/physics/pair_terms.hpp"
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/setup/geometry.hpp"
+#include "vrsph/vres/coupling.hpp"
+#include "vrsph/vres/levels.hpp"
 
 namespace vrsph {
 namespace {
@@ -40,42 +42,103 @@ void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>
   }
 }
 
-// Models the case format already accepts but this solver does not compute yet are refused, never
-// silently skipped.
-void refuse_unimplemented(const CaseSpec& spec) {
-  if (!spec.refinements.empty()) {
-    throw std::invalid_argument(
-        "refinement: variable resolution is not implemented in this version (remove [[refinement]])");
+
+// Parameters of one level: everything that depends on its dp; c0 is common to all levels.
+template <int D>
+SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0) {
+  SolverParams<D> prm;
+  prm.dp = dp;
+  prm.h = spec.h_over_dp * dp;
+  prm.eta2 = 0.01 * prm.h * prm.h;
+  prm.kernel = WendlandC2<D>(prm.h);
+  prm.mass = spec.density * std::pow(dp, D);
+  prm.gravity = to_vec<D>(spec.gravity);
+  const double g = norm(prm.gravity);
+  prm.up = g > 0.0 ? prm.gravity * (-1.0 / g) : Vec<D>{};
+  prm.eos = TaitEos(spec.density, spec.gamma, c0);
+  prm.inv_gamma = 1.0 / spec.gamma;
+  prm.rho0_g_over_b = spec.density * g / prm.eos.b;
+  if (spec.density_diffusion == DiffusionModel::fourtakas &&
+      prm.rho0_g_over_b * prm.kernel.support() > fourtakas_series_bound) {
+    throw std::invalid_argument(fmt::format(
+        "numerics.density_diffusion.model = \"fourtakas\": rho0 g 2h / B = {:.3g} exceeds {:g}: "
+        "the speed of sound {:.4g} m/s is too low for this resolution (raise eos.sound_speed)",
+        prm.rho0_g_over_b * prm.kernel.support(), fourtakas_series_bound, c0));
   }
+  prm.viscosity = spec.viscosity;
+  prm.nu = spec.viscosity == ViscosityModel::laminar ? spec.kinematic_viscosity : 0.0;
+  prm.alpha_c0_h = spec.artificial_alpha * c0 * prm.h;
+  prm.diffusion = spec.density_diffusion;
+  prm.two_delta_h_c0 = 2.0 * spec.diffusion_delta * prm.h * c0;
+  prm.cfl = spec.cfl;
+  prm.sigma = spec.surface_tension;
+  prm.lambda_threshold = spec.lambda_threshold;
+  prm.normal_epsilon = spec.normal_epsilon;
+  prm.shifting = {spec.shifting, spec.shifting_coefficient, spec.shifting_surface_threshold,
+                  prm.h, dp};
+  prm.dt_min = 0.05 * prm.h / c0;
+  return prm;
+}
+
+// The particles of one level: the case filled at the level's dp (with its initial pressures
+// and hydrostatic density, computed on the whole fill so columns see the real free surface),
+// then cut to the level's region: fluid where it owns the fluid, buffer in its shells, walls
+// within 2h of either.
+template <int D>
+ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
+                               const SolverParams<D>& prm, std::uint64_t first_id,
+                               double* fluid_height) {
+  CaseSpec s = spec;
+  s.dp = lay.dp;
+  InitialSet<D> init = build_particles<D>(s);
+  ParticleSet<D>& all = init.particles;
+  if (fluid_height) *fluid_height = init.fluid_height;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (init.initial_pressure[i] != 0.0) all.rho[i] = prm.eos.density(init.initial_pressure[i]);
+  }
+  const double g = norm(prm.gravity);
+  if (spec.hydrostatic_initial_density && g > 0.0) {
+    apply_hydrostatic_density<D>(all, prm.gravity, spec.density, lay.dp, prm.eos);
+  }
+  ParticleSet<D> ps;
+  std::uint64_t id = first_id;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    Kind k = all.kind[i];
+    if (k == Kind::wall) {
+      if (!lay.region.covers(all.pos[i], prm.kernel.support())) continue;
+    } else {
+      const Zone z = lay.region.classify(all.pos[i]).zone;
+      if (z == Zone::outside) continue;
+      if (z == Zone::buffer) k = Kind::buffer;
+    }
+    ps.push_back(id++, k, all.pos[i], all.vel[i], all.rho[i], all.mass[i]);
+  }
+  return ps;
 }
 
 }  // namespace
 
 template <int D>
 Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
-  refuse_unimplemented(spec);
-  InitialSet<D> init = build_particles<D>(spec);
-  ps_ = std::move(init.particles);
-  setup_.fluid_height = init.fluid_height;
+  const std::vector<LevelLayout<D>> layout = make_level_layout<D>(spec);
+  levels_.resize(layout.size());
 
-  prm_.dp = spec.dp;
-  prm_.h = spec.h_over_dp * spec.dp;
-  prm_.eta2 = 0.01 * prm_.h * prm_.h;
-  prm_.kernel = WendlandC2<D>(prm_.h);
-  prm_.mass = spec.density * std::pow(spec.dp, D);
-  prm_.gravity = to_vec<D>(spec.gravity);
-  const double g = norm(prm_.gravity);
-  prm_.up = g > 0.0 ? prm_.gravity * (-1.0 / g) : Vec<D>{};
-
-  // Speed of sound: given, or sound_speed_factor x max_speed, with max_speed = sqrt(g H) for
-  // gravity cases when not given (PHYSICS.md section 2).
-  if (!spec.max_speed) {
-    if (g > 0.0 && setup_.fluid_height > 0.0) {
-      spec.max_speed = std::sqrt(g * setup_.fluid_height);
-    } else {
-      double vmax = 0.0;
-      for (const auto& v : ps_.vel) vmax = std::max(vmax, norm(v));
-      if (vmax > 0.0) spec.max_speed = vmax;
+  // Speed of sound (common to all levels): given, or sound_speed_factor x max_speed, with
+  // max_speed = sqrt(g H) for gravity cases when not given (PHYSICS.md section 2). H and initial
+  // velocities come from the level-0 fill.
+  {
+    CaseSpec s0 = spec;
+    InitialSet<D> init0 = build_particles<D>(s0);
+    setup_.fluid_height = init0.fluid_height;
+    const double g = norm(to_vec<D>(spec.gravity));
+    if (!spec.max_speed) {
+      if (g > 0.0 && setup_.fluid_height > 0.0) {
+        spec.max_speed = std::sqrt(g * setup_.fluid_height);
+      } else {
+        double vmax = 0.0;
+        for (const auto& v : init0.particles.vel) vmax = std::max(vmax, norm(v));
+        if (vmax > 0.0) spec.max_speed = vmax;
+      }
     }
   }
   if (!spec.sound_speed && !spec.max_speed) {
@@ -85,59 +148,61 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
   }
   setup_.max_speed = spec.max_speed.value_or(0.0);
   setup_.c0 = spec.sound_speed ? *spec.sound_speed : spec.sound_speed_factor * *spec.max_speed;
-  prm_.eos = TaitEos(spec.density, spec.gamma, setup_.c0);
-  prm_.inv_gamma = 1.0 / spec.gamma;
-  prm_.rho0_g_over_b = spec.density * g / prm_.eos.b;
-  if (spec.density_diffusion == DiffusionModel::fourtakas &&
-      prm_.rho0_g_over_b * prm_.kernel.support() > fourtakas_series_bound) {
-    throw std::invalid_argument(fmt::format(
-        "numerics.density_diffusion.model = \"fourtakas\": rho0 g 2h / B = {:.3g} exceeds {:g}: "
-        "the speed of sound {:.4g} m/s is too low for this resolution (raise eos.sound_speed)",
-        prm_.rho0_g_over_b * prm_.kernel.support(), fourtakas_series_bound, setup_.c0));
-  }
 
-  prm_.viscosity = spec.viscosity;
-  prm_.nu = spec.viscosity == ViscosityModel::laminar ? spec.kinematic_viscosity : 0.0;
-  prm_.alpha_c0_h = spec.artificial_alpha * setup_.c0 * prm_.h;
-  prm_.diffusion = spec.density_diffusion;
-  prm_.two_delta_h_c0 = 2.0 * spec.diffusion_delta * prm_.h * setup_.c0;
-  prm_.cfl = spec.cfl;
-  prm_.sigma = spec.surface_tension;
-  prm_.lambda_threshold = spec.lambda_threshold;
-  prm_.normal_epsilon = spec.normal_epsilon;
-  prm_.shifting = {spec.shifting, spec.shifting_coefficient, spec.shifting_surface_threshold,
-                   prm_.h, spec.dp};
-  prm_.dt_min = 0.05 * prm_.h / setup_.c0;
-
-  // Initial pressure of a fluid block (e.g. a droplet started at its Laplace pressure, as the
-  // poster does): the density that the EOS maps to it.
-  for (std::size_t i = 0; i < ps_.size(); ++i) {
-    if (init.initial_pressure[i] != 0.0) ps_.rho[i] = prm_.eos.density(init.initial_pressure[i]);
+  std::uint64_t next_id = 0;
+  for (std::size_t k = 0; k < layout.size(); ++k) {
+    Level<D>& L = levels_[k];
+    L.prm = level_params<D>(spec, layout[k].dp, setup_.c0);
+    L.region = layout[k].region;
+    L.ps = level_particles<D>(spec, layout[k], L.prm, next_id, nullptr);
+    next_id += L.ps.size();
+    L.mass_points = level_mass_points<D>(L.region, L.prm.dp);
   }
-  if (spec.hydrostatic_initial_density && g > 0.0) {
-    apply_hydrostatic_density<D>(ps_, prm_.gravity, spec.density, spec.dp, prm_.eos);
-  }
+  counters_.next_id = next_id;
 
+  // One domain for all levels, from the level-0 particles.
   Vec<D> lo, hi;
-  default_domain<D>(ps_, prm_.up, prm_.h, lo, hi);
+  default_domain<D>(levels_[0].ps, levels_[0].prm.up, levels_[0].prm.h, lo, hi);
   if (spec.domain_min) lo = to_vec<D>(*spec.domain_min);
   if (spec.domain_max) hi = to_vec<D>(*spec.domain_max);
-  grid_ = CellGrid<D>(lo, hi, prm_.kernel.support(), cells_per_support);
-  ps_.resize(ps_.size());
-  sort_particles();
-  initial_fluid_ = ps_.count(Kind::fluid);
+  for (Level<D>& L : levels_) {
+    L.grid = CellGrid<D>(lo, hi, L.prm.kernel.support(), cells_per_support);
+    L.ps.resize(L.ps.size());
+    sort_particles(L);
+  }
+  initial_fluid_ = count(Kind::fluid);
   stop_time_ = spec.end_time;
+  if (levels_.size() > 1) couple_levels(0.0);  // buffer values from the other levels
 
   // First step: the acoustic limit of a fluid at rest, with the viscous and capillary limits.
-  DtInputs in{prm_.h, prm_.cfl, setup_.c0, 0.0, 0.0, 0.0, prm_.nu, spec.density, prm_.sigma};
-  for (const auto& v : ps_.vel) in.max_speed = std::max(in.max_speed, norm(v));
-  dt_next_ = choose_dt(in).dt;
+  const SolverParams<D>& fine = levels_.back().prm;
+  dt_next_ = 1e300;
+  for (const Level<D>& L : levels_) {
+    DtInputs in{L.prm.h, L.prm.cfl, setup_.c0, 0.0, 0.0, 0.0, L.prm.nu, spec.density, L.prm.sigma};
+    for (const auto& v : L.ps.vel) in.max_speed = std::max(in.max_speed, norm(v));
+    dt_next_ = std::min(dt_next_, choose_dt(in).dt);
+  }
+  (void)fine;
 }
 
 template <int D>
-void Simulation<D>::sort_particles() {
+std::size_t Simulation<D>::total_particles() const {
+  std::size_t n = 0;
+  for (const Level<D>& L : levels_) n += L.ps.size();
+  return n;
+}
+
+template <int D>
+std::size_t Simulation<D>::count(Kind k) const {
+  std::size_t n = 0;
+  for (const Level<D>& L : levels_) n += L.ps.count(k);
+  return n;
+}
+
+template <int D>
+void Simulation<D>::sort_particles(Level<D>& L) {
   const double t0 = now_seconds();
-  const auto lost = grid_.sort(ps_);
+  const auto lost = L.grid.sort(L.ps);
   times_.sort += now_seconds() - t0;
   if (lost.empty()) return;
   // Lost wall particles can only be a set-up error (walls never move).
@@ -154,95 +219,151 @@ void Simulation<D>::sort_particles() {
 }
 
 template <int D>
+void Simulation<D>::sort_all() {
+  for (Level<D>& L : levels_) sort_particles(L);
+}
+
+template <int D>
 void Simulation<D>::resort() {
-  ps_.resize(ps_.size());
-  sort_particles();
+  for (Level<D>& L : levels_) L.ps.resize(L.ps.size());
+  sort_all();
 }
 
 template <int D>
 void Simulation<D>::update_pressure() {
-  ps_.p.resize(ps_.size());
-  for (std::size_t i = 0; i < ps_.size(); ++i) ps_.p[i] = prm_.eos.pressure(ps_.rho[i]);
+  for (Level<D>& L : levels_) {
+    L.ps.p.resize(L.ps.size());
+    for (std::size_t i = 0; i < L.ps.size(); ++i) L.ps.p[i] = L.prm.eos.pressure(L.ps.rho[i]);
+  }
 }
 
 // Predictor (dt/2): x+ = x + dt/2 v, v+ = v + dt/2 (a + g), rho+ = rho + dt/2 drho.
 // Walls keep position and velocity; their density is clamped at >= rho0 (dynamic boundary).
+// Buffer particles move with their velocity; their v and rho come from the other level
+// (PHYSICS.md section 5) and are not integrated.
 template <int D>
-void Simulation<D>::predictor(double dt) {
+void Simulation<D>::predictor(Level<D>& L, double dt) {
+  ParticleSet<D>& ps = L.ps;
   const double half = 0.5 * dt;
-  const double rho0 = prm_.eos.rho0;
-  const auto n = static_cast<std::int64_t>(ps_.size());
+  const double rho0 = L.prm.eos.rho0;
+  const Vec<D> g = L.prm.gravity;
+  const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
-    ps_.pos0[i] = ps_.pos[i];
-    ps_.vel0[i] = ps_.vel[i];
-    ps_.rho0[i] = ps_.rho[i];
-    ps_.rho[i] = ps_.rho[i] + half * ps_.drho[i];
-    if (ps_.kind[i] == Kind::wall) {
-      ps_.rho[i] = std::max(ps_.rho[i], rho0);
+    ps.pos0[i] = ps.pos[i];
+    ps.vel0[i] = ps.vel[i];
+    ps.rho0[i] = ps.rho[i];
+    if (ps.kind[i] == Kind::buffer) {
+      ps.pos[i] += half * ps.vel[i];
       continue;
     }
-    ps_.pos[i] += half * ps_.vel[i];
-    ps_.vel[i] += half * (ps_.acc[i] + prm_.gravity);
+    ps.rho[i] = ps.rho[i] + half * ps.drho[i];
+    if (ps.kind[i] == Kind::wall) {
+      ps.rho[i] = std::max(ps.rho[i], rho0);
+      continue;
+    }
+    ps.pos[i] += half * ps.vel[i];
+    ps.vel[i] += half * (ps.acc[i] + g);
   }
 }
 
 // Corrector: v' = v + dt (a+ + g), x' = x + dt (v + v')/2 + dr_shift, rho' = rho (2 - eps)/(2 + eps),
-// eps = -(drho+/rho+) dt.
+// eps = -(drho+/rho+) dt. Buffer particles: x' = x + dt v + dr_shift without its component
+// normal to the nearest interface face (PHYSICS.md section 5); v and rho unchanged.
 template <int D>
-void Simulation<D>::corrector(double dt) {
-  const double rho0 = prm_.eos.rho0;
-  const bool shifting = prm_.shifting.model != ShiftingModel::none;
-  const auto n = static_cast<std::int64_t>(ps_.size());
+void Simulation<D>::corrector(Level<D>& L, double dt) {
+  ParticleSet<D>& ps = L.ps;
+  const SolverParams<D>& prm = L.prm;
+  const double rho0 = prm.eos.rho0;
+  const bool shifting = prm.shifting.model != ShiftingModel::none;
+  const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
-    const double eps = -(ps_.drho[i] / ps_.rho[i]) * dt;
-    ps_.rho[i] = ps_.rho0[i] * (2.0 - eps) / (2.0 + eps);
-    if (ps_.kind[i] == Kind::wall) {
-      ps_.rho[i] = std::max(ps_.rho[i], rho0);
+    if (ps.kind[i] == Kind::wall) {
+      const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
+      ps.rho[i] = std::max(ps.rho0[i] * (2.0 - eps) / (2.0 + eps), rho0);
       continue;
     }
     if (shifting) {  // from the half-step sums and velocity
-      ps_.shift[i] = shifting_displacement<D>(prm_.shifting, sf_.grad_c[i], sf_.div_r[i],
-                                              norm(ps_.vel[i]), dt);
+      ps.shift[i] = shifting_displacement<D>(prm.shifting, L.sf.grad_c[i], L.sf.div_r[i],
+                                             norm(ps.vel[i]), dt);
     }
-    ps_.vel[i] = ps_.vel0[i] + dt * (ps_.acc[i] + prm_.gravity);
-    ps_.pos[i] = ps_.pos0[i] + (0.5 * dt) * (ps_.vel0[i] + ps_.vel[i]) + ps_.shift[i];
+    if (ps.kind[i] == Kind::buffer) {
+      if (shifting) {
+        const Vec<D> nf = L.region.classify(ps.pos0[i]).face_normal;
+        ps.shift[i] -= dot(ps.shift[i], nf) * nf;
+      }
+      ps.rho[i] = ps.rho0[i];
+      ps.vel[i] = ps.vel0[i];
+      ps.pos[i] = ps.pos0[i] + dt * ps.vel0[i] + ps.shift[i];
+      continue;
+    }
+    const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
+    ps.rho[i] = ps.rho0[i] * (2.0 - eps) / (2.0 + eps);
+    ps.vel[i] = ps.vel0[i] + dt * (ps.acc[i] + prm.gravity);
+    ps.pos[i] = ps.pos0[i] + (0.5 * dt) * (ps.vel0[i] + ps.vel[i]) + ps.shift[i];
   }
 }
 
+// Next dt: the minimum over levels (one global dt, PHYSICS.md section 5); `s` holds the maxima
+// of both stages over all levels, and the speeds are taken per level.
 template <int D>
-DtChoice Simulation<D>::next_dt(const ForceStats& a, const ForceStats& b) const {
-  double vmax2 = 0.0;
-  for (std::size_t i = 0; i < ps_.size(); ++i) {
-    if (ps_.kind[i] != Kind::wall) vmax2 = std::max(vmax2, norm2(ps_.vel[i]));
+DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
+  DtChoice best{1e300, DtLimit{}};
+  bool first = true;
+  for (const Level<D>& L : levels_) {
+    double vmax2 = 0.0;
+    for (std::size_t i = 0; i < L.ps.size(); ++i) {
+      if (L.ps.kind[i] != Kind::wall) vmax2 = std::max(vmax2, norm2(L.ps.vel[i]));
+    }
+    const DtInputs in{L.prm.h, L.prm.cfl, setup_.c0, s.max_acc, std::sqrt(vmax2),
+                      s.max_visc_dt, L.prm.nu, L.prm.eos.rho0, L.prm.sigma};
+    const DtChoice c = choose_dt(in);
+    if (first || c.dt < best.dt) best = c;
+    first = false;
   }
-  const DtInputs in{prm_.h, prm_.cfl, setup_.c0, std::max(a.max_acc, b.max_acc),
-                    std::sqrt(vmax2), std::max(a.max_visc_dt, b.max_visc_dt), prm_.nu,
-                    prm_.eos.rho0, prm_.sigma};
-  return choose_dt(in);
+  return best;
 }
 
-// One force evaluation: the surface passes (when surface tension or shifting is on), then the
-// pair forces with the surface-tension acceleration added.
+// One force evaluation of a level: the surface passes (when surface tension or shifting is on),
+// then the pair forces with the surface-tension acceleration added.
 template <int D>
-ForceStats Simulation<D>::evaluate_forces() {
+ForceStats Simulation<D>::evaluate_forces(Level<D>& L) {
   double t0 = now_seconds();
-  const bool st = prm_.sigma > 0.0;
-  if (st || prm_.shifting.model != ShiftingModel::none) surface_sums(prm_, ps_, grid_, sf_);
-  if (st) surface_tension_force(prm_, ps_, grid_, sf_);
+  const bool st = L.prm.sigma > 0.0;
+  if (st || L.prm.shifting.model != ShiftingModel::none) surface_sums(L.prm, L.ps, L.grid, L.sf);
+  if (st) surface_tension_force(L.prm, L.ps, L.grid, L.sf);
   times_.surface += now_seconds() - t0;
   t0 = now_seconds();
-  const ForceStats s = compute_forces(prm_, ps_, grid_, force_ws_, st ? sf_.acc_st.data() : nullptr);
+  const ForceStats s =
+      compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr);
   times_.forces += now_seconds() - t0;
   return s;
 }
 
 template <int D>
-const SurfaceFields<D>& Simulation<D>::surface_fields_now() {
-  surface_sums(prm_, ps_, grid_, sf_);
-  if (prm_.sigma > 0.0) surface_tension_force(prm_, ps_, grid_, sf_);
-  return sf_;
+const SurfaceFields<D>& Simulation<D>::surface_fields_now(std::size_t k) {
+  Level<D>& L = levels_[k];
+  surface_sums(L.prm, L.ps, L.grid, L.sf);
+  if (L.prm.sigma > 0.0) surface_tension_force(L.prm, L.ps, L.grid, L.sf);
+  return L.sf;
+}
+
+// Variable resolution after a step (PHYSICS.md section 5): mass points, kind changes and
+// deletions, then buffer values from the other levels.
+template <int D>
+void Simulation<D>::couple_levels(double dt) {
+  const double t0 = now_seconds();
+  CouplingTally tally;
+  accumulate_and_create(levels_, dt, counters_.next_id, tally);
+  for (Level<D>& L : levels_) update_kinds(L, tally);
+  sort_all();
+  if (interpolate_buffers(levels_, tally) > 0) sort_all();
+  counters_.created += tally.created;
+  counters_.deleted += tally.deleted;
+  counters_.created_mass += tally.created_mass;
+  counters_.deleted_mass += tally.deleted_mass;
+  times_.coupling += now_seconds() - t0;
 }
 
 template <int D>
@@ -250,43 +371,50 @@ void Simulation<D>::step() {
   double dt = dt_next_;
   const bool lands = stop_time_ > t_ && t_ + dt >= stop_time_;
   if (lands) dt = stop_time_ - t_;
-  const ForceStats s1 = evaluate_forces();
+  ForceStats s;
+  auto merge = [&](const ForceStats& a) {
+    s.max_acc = std::max(s.max_acc, a.max_acc);
+    s.max_visc_dt = std::max(s.max_visc_dt, a.max_visc_dt);
+    s.pairs += a.pairs;
+  };
+  for (Level<D>& L : levels_) merge(evaluate_forces(L));
   double t0 = now_seconds();
-  t0 = now_seconds();
-  predictor(dt);
+  for (Level<D>& L : levels_) predictor(L, dt);
   times_.update += now_seconds() - t0;
-  sort_particles();
-  const ForceStats s2 = evaluate_forces();
+  sort_all();
+  for (Level<D>& L : levels_) merge(evaluate_forces(L));
   t0 = now_seconds();
-  corrector(dt);
+  for (Level<D>& L : levels_) corrector(L, dt);
   times_.update += now_seconds() - t0;
-  counters_.particle_steps += ps_.size();
-  sort_particles();
+  counters_.particle_steps += total_particles();
+  sort_all();
+  if (levels_.size() > 1) couple_levels(dt);
   t0 = now_seconds();
   t_ = lands ? stop_time_ : t_ + dt;
   ++step_;
   dt_last_ = dt;
-  counters_.pairs += s1.pairs + s2.pairs;
-  const DtChoice c = next_dt(s1, s2);
+  counters_.pairs += s.pairs;
+  const DtChoice c = next_dt(s);
   dt_next_ = c.dt;
   ++counters_.dt_limit_counts[static_cast<std::size_t>(c.limit)];
-  check_state();
+  for (const Level<D>& L : levels_) check_state(L);
   times_.checks += now_seconds() - t0;
 }
 
 // Stops the run with a diagnosis: non-finite values, fluid density outside [0.5, 2] rho0, or a
 // time step collapsed below 0.05 h / c0.
 template <int D>
-void Simulation<D>::check_state() const {
-  const double rho0 = prm_.eos.rho0;
-  const auto n = static_cast<std::int64_t>(ps_.size());
+void Simulation<D>::check_state(const Level<D>& L) const {
+  const ParticleSet<D>& ps = L.ps;
+  const double rho0 = L.prm.eos.rho0;
+  const auto n = static_cast<std::int64_t>(ps.size());
   auto finite = [&](std::size_t i) {
-    return std::isfinite(ps_.rho[i]) && std::isfinite(norm2(ps_.vel[i])) &&
-           std::isfinite(norm2(ps_.pos[i]));
+    return std::isfinite(ps.rho[i]) && std::isfinite(norm2(ps.vel[i])) &&
+           std::isfinite(norm2(ps.pos[i]));
   };
   auto bad = [&](std::size_t i) {
-    if (ps_.kind[i] == Kind::wall) return false;
-    return !finite(i) || ps_.rho[i] < 0.5 * rho0 || ps_.rho[i] > 2.0 * rho0;
+    if (ps.kind[i] == Kind::wall) return false;
+    return !finite(i) || ps.rho[i] < 0.5 * rho0 || ps.rho[i] > 2.0 * rho0;
   };
   std::int64_t first = n;  // lowest failing index: the same report for any thread count
 #pragma omp parallel for schedule(static) reduction(min : first)
@@ -295,24 +423,24 @@ void Simulation<D>::check_state() const {
   }
   if (first < n) {
     const auto i = static_cast<std::size_t>(first);
-    const auto& x = ps_.pos[i];
+    const auto& x = ps.pos[i];
     const bool is_finite = finite(i);
     std::string where = fmt::format("({:.6g}", x[0]);
     for (int k = 1; k < D; ++k) where += fmt::format(", {:.6g}", x[k]);
     where += ")";
     throw InstabilityError(fmt::format(
-        "unstable at t = {:.6g} s, step {}: fluid particle id {} at {} {} (check: {})", t_, step_,
-        ps_.id[i], where,
-        is_finite ? fmt::format("has density {:.6g} kg/m^3 outside [{:.6g}, {:.6g}]", ps_.rho[i],
+        "unstable at t = {:.6g} s, step {}: {} particle id {} at {} {} (check: {})", t_, step_,
+        kind_name(ps.kind[i]), ps.id[i], where,
+        is_finite ? fmt::format("has density {:.6g} kg/m^3 outside [{:.6g}, {:.6g}]", ps.rho[i],
                                 0.5 * rho0, 2.0 * rho0)
                   : std::string("has a non-finite position, velocity or density"),
         is_finite ? "density" : "finite"));
   }
-  if (dt_next_ < prm_.dt_min) {
+  if (dt_next_ < L.prm.dt_min) {
     throw InstabilityError(fmt::format(
         "unstable at t = {:.6g} s, step {}: time step {:.3g} s fell below 0.05 h/c0 = {:.3g} s "
         "(check: dt; limited by {})",
-        t_, step_, dt_next_, prm_.dt_min, "the fastest particles or largest accelerations"));
+        t_, step_, dt_next_, L.prm.dt_min, "the fastest particles or largest accelerations"));
   }
 }
 

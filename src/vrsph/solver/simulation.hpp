@@ -1,5 +1,6 @@
-// One simulation: the particles of a single resolution level, its cell grid and parameters, and
-// the symplectic time stepping of PHYSICS.md section 2. The driver (run.cpp) owns outputs,
+// One simulation: the resolution levels (one without [[refinement]]), and the symplectic time
+// stepping of PHYSICS.md section 2 with one global dt, followed after every step by the coupling
+// of the levels (PHYSICS.md section 5, vres/coupling.hpp). The driver (run.cpp) owns outputs,
 // checkpoints and the progress line; this class only advances the physics and checks stability.
 #pragma once
 
@@ -12,6 +13,7 @@
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/setup/case_spec.hpp"
 #include "vrsph/solver/forces.hpp"
+#include "vrsph/solver/level.hpp"
 #include "vrsph/solver/params.hpp"
 #include "vrsph/solver/surface_pass.hpp"
 #include "vrsph/solver/timestep.hpp"
@@ -30,6 +32,13 @@ struct RunCounters {
   std::array<std::uint64_t, 4> dt_limit_counts{};
   std::uint64_t lost_fluid = 0;      // fluid particles that left the domain
   double wall_seconds = 0.0;         // wall time spent stepping (resumed runs accumulate)
+  // Variable resolution: particles created at mass points, and deleted (left their level's
+  // region, or no donor fluid around a buffer particle), with their masses.
+  std::uint64_t created = 0;
+  std::uint64_t deleted = 0;
+  double created_mass = 0.0;
+  double deleted_mass = 0.0;
+  std::uint64_t next_id = 0;         // id of the next created particle
 };
 
 // Wall-clock share per pass (seconds), for the benchmark profile.
@@ -39,6 +48,7 @@ struct PassTimes {
   double forces = 0.0;
   double update = 0.0;
   double checks = 0.0;
+  double coupling = 0.0;  // variable resolution: mass points, kinds, buffer interpolation
 };
 
 // The resolved physical set-up shared by check and run.
@@ -62,10 +72,14 @@ class Simulation {
   double dt_next() const { return dt_next_; }
   double dt_last() const { return dt_last_; }
   const Setup& setup() const { return setup_; }
-  const SolverParams<D>& params() const { return prm_; }
-  ParticleSet<D>& particles() { return ps_; }
-  const ParticleSet<D>& particles() const { return ps_; }
-  const CellGrid<D>& grid() const { return grid_; }
+  // Level 0 (the only level without [[refinement]]).
+  const SolverParams<D>& params() const { return levels_[0].prm; }
+  ParticleSet<D>& particles() { return levels_[0].ps; }
+  const ParticleSet<D>& particles() const { return levels_[0].ps; }
+  const CellGrid<D>& grid() const { return levels_[0].grid; }
+  std::size_t level_count() const { return levels_.size(); }
+  Level<D>& level(std::size_t k) { return levels_[k]; }
+  const Level<D>& level(std::size_t k) const { return levels_[k]; }
   RunCounters& counters() { return counters_; }
   const RunCounters& counters() const { return counters_; }
   const PassTimes& pass_times() const { return times_; }
@@ -80,31 +94,33 @@ class Simulation {
   void set_stop_time(double t_stop) { stop_time_ = t_stop; }
   // Re-sorts after the particle arrays were replaced (resume).
   void resort();
+  // Number of particles of all levels.
+  std::size_t total_particles() const;
+  std::size_t count(Kind k) const;
 
   // Pressure of every particle from its current density (outputs).
   void update_pressure();
 
-  // lambda, normals, curvature, ... of the current state (outputs); recomputed on each call.
-  const SurfaceFields<D>& surface_fields_now();
+  // lambda, normals, curvature, ... of level k in the current state (outputs); recomputed on
+  // each call.
+  const SurfaceFields<D>& surface_fields_now(std::size_t k = 0);
   bool has_surface_fields() const {
-    return prm_.sigma > 0.0 || prm_.shifting.model != ShiftingModel::none;
+    return params().sigma > 0.0 || params().shifting.model != ShiftingModel::none;
   }
 
  private:
-  void sort_particles();
-  void predictor(double dt);
-  void corrector(double dt);
-  void check_state() const;
-  ForceStats evaluate_forces();
-  DtChoice next_dt(const ForceStats& a, const ForceStats& b) const;
+  void sort_particles(Level<D>& L);
+  void sort_all();
+  void predictor(Level<D>& L, double dt);
+  void corrector(Level<D>& L, double dt);
+  void check_state(const Level<D>& L) const;
+  ForceStats evaluate_forces(Level<D>& L);
+  DtChoice next_dt(const ForceStats& s) const;
+  void couple_levels(double dt);
 
   CaseSpec spec_;
   Setup setup_;
-  SolverParams<D> prm_;
-  ParticleSet<D> ps_;
-  CellGrid<D> grid_;
-  ForceWorkspace<D> force_ws_;
-  SurfaceFields<D> sf_;
+  std::vector<Level<D>> levels_;
   double t_ = 0.0;
   double stop_time_ = 0.0;
   std::int64_t step_ = 0;

@@ -1,0 +1,114 @@
+#include "vrsph/vres/coupling.hpp"
+
+#include "vrsph/vres/interpolation.hpp"
+
+namespace vrsph {
+namespace {
+
+constexpr double kMinShepard = 0.05;  // below: no donor fluid around the point
+
+// Mass the donor flow carries across a face element in dt: -rho (u . n) dA dt (n out of the
+// buffer, so inflow into the buffer is positive). Once the stored mass is negative only
+// positive increments are kept, so outflow cannot pile up a debt that blocks later inflow.
+inline double accumulate_mass(double stored, double rho, double u_n, double area, double dt) {
+  const double dm = -rho * u_n * area * dt;
+  return (stored < 0.0 && dm < 0.0) ? stored : stored + dm;
+}
+
+}  // namespace
+
+template <int D>
+void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64_t& next_id,
+                           CouplingTally& tally) {
+  if (dt <= 0.0) return;
+  for (Level<D>& L : levels) {
+    const double m = L.prm.mass;
+    const double threshold = L.prm.shifting.threshold;
+    const auto np = static_cast<std::int64_t>(L.mass_points.size());
+    std::vector<InterpolatedState<D>> st(L.mass_points.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t q = 0; q < np; ++q) {
+      const MassPoint<D>& P = L.mass_points[static_cast<std::size_t>(q)];
+      const Level<D>& donor = levels[static_cast<std::size_t>(P.donor)];
+      st[static_cast<std::size_t>(q)] =
+          interpolate_from_level<D>(P.x, donor.ps, donor.grid, donor.prm.kernel);
+    }
+    for (std::size_t q = 0; q < L.mass_points.size(); ++q) {
+      MassPoint<D>& P = L.mass_points[q];
+      const InterpolatedState<D>& s = st[q];
+      if (s.shepard < kMinShepard || s.div_r < threshold) continue;  // not inside the fluid
+      P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), P.area, dt);
+      if (P.mass < m) continue;
+      P.mass -= m;
+      L.ps.push_back(next_id++, Kind::buffer, P.x - (0.5 * L.prm.dp) * P.n, s.vel, s.rho, m);
+      ++tally.created;
+      tally.created_mass += m;
+    }
+  }
+}
+
+template <int D>
+void update_kinds(Level<D>& L, CouplingTally& tally) {
+  ParticleSet<D>& ps = L.ps;
+  std::vector<std::uint8_t> keep(ps.size(), 1);
+  std::size_t removed = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.kind[i] == Kind::wall) continue;
+    switch (L.region.classify(ps.pos[i]).zone) {
+      case Zone::fluid: ps.kind[i] = Kind::fluid; break;
+      case Zone::buffer: ps.kind[i] = Kind::buffer; break;
+      case Zone::outside:
+        keep[i] = 0;
+        ++removed;
+        tally.deleted_mass += ps.mass[i];
+        break;
+    }
+  }
+  if (removed == 0) return;
+  tally.deleted += removed;
+  ps.compact(keep);
+}
+
+template <int D>
+std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally) {
+  std::size_t removed_all = 0;
+  for (Level<D>& L : levels) {
+    ParticleSet<D>& ps = L.ps;
+    const auto n = static_cast<std::int64_t>(ps.size());
+    std::vector<std::uint8_t> keep(ps.size(), 1);
+    std::int64_t removed = 0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : removed)
+    for (std::int64_t ii = 0; ii < n; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (ps.kind[i] != Kind::buffer) continue;
+      const ZoneInfo<D> z = L.region.classify(ps.pos[i]);
+      const Level<D>& donor = levels[static_cast<std::size_t>(z.donor)];
+      const InterpolatedState<D> s =
+          interpolate_from_level<D>(ps.pos[i], donor.ps, donor.grid, donor.prm.kernel);
+      if (s.shepard < kMinShepard) {
+        keep[i] = 0;
+        ++removed;
+        continue;
+      }
+      ps.rho[i] = s.rho;
+      ps.vel[i] = s.vel;
+    }
+    if (removed == 0) continue;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (!keep[i]) tally.deleted_mass += ps.mass[i];
+    tally.deleted += static_cast<std::uint64_t>(removed);
+    removed_all += ps.compact(keep);
+  }
+  return removed_all;
+}
+
+template void accumulate_and_create<2>(std::vector<Level<2>>&, double, std::uint64_t&,
+                                       CouplingTally&);
+template void accumulate_and_create<3>(std::vector<Level<3>>&, double, std::uint64_t&,
+                                       CouplingTally&);
+template void update_kinds<2>(Level<2>&, CouplingTally&);
+template void update_kinds<3>(Level<3>&, CouplingTally&);
+template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&, CouplingTally&);
+template std::size_t interpolate_buffers<3>(std::vector<Level<3>>&, CouplingTally&);
+
+}  // namespace vrsph

@@ -1,0 +1,43 @@
+// Coupling of resolution levels after each step (PHYSICS.md section 5; Ricci, Vacondio & Tafuni
+// 2024, as DualSPHysics' VRes does it):
+//  1. mass points on the outer face of each buffer accumulate the mass the other level's flow
+//     carries into the buffer, dm = -rho (u . n) dA dt, where the point lies inside the fluid
+//     (div r > the free-surface threshold); a stored mass above one particle mass creates a
+//     buffer particle 0.5 dp inside the face;
+//  2. kinds follow positions: fluid entering its level's buffer becomes buffer, buffer entering
+//     the fluid region becomes fluid, anything leaving the level's region is deleted;
+//  3. every buffer particle takes rho and v from the other level's fluid by first-order
+//     corrected interpolation (vres/interpolation.hpp), and is deleted where that level has
+//     no fluid (Shepard sum < 0.05).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "vrsph/solver/level.hpp"
+
+namespace vrsph {
+
+struct CouplingTally {
+  std::uint64_t created = 0;
+  std::uint64_t deleted = 0;
+  double created_mass = 0.0;
+  double deleted_mass = 0.0;
+};
+
+// Step 1 for all levels (dt = 0: no accumulation). New particles are appended (unsorted) with
+// ids from next_id.
+template <int D>
+void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64_t& next_id,
+                           CouplingTally& tally);
+
+// Step 2 for one level (particles are compacted; the level must be re-sorted afterwards).
+template <int D>
+void update_kinds(Level<D>& L, CouplingTally& tally);
+
+// Step 3 for all levels (needs sorted levels). Returns the number of deleted buffer particles
+// (the levels must then be re-sorted).
+template <int D>
+std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally);
+
+}  // namespace vrsph

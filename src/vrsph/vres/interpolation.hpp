@@ -1,0 +1,152 @@
+// Buffer-particle values of variable resolution (PHYSICS.md section 5; Ricci, Vacondio & Tafuni
+// 2024): the density and velocity at a point, taken from the fluid particles of the other
+// ("donor") level by first-order consistent corrected SPH (Liu & Liu 2006, "Restoring particle
+// consistency in smoothed particle hydrodynamics", Appl. Numer. Math. 56:19-36).
+//
+// Idea: a first-order Taylor expansion about the point x, f_j = f + grad f . (x_j - x), is
+// multiplied by V_j W and by V_j grad W and summed over the donors j. This gives D+1 linear
+// equations in the D+1 unknowns (f, grad f):
+//     A [f, grad f]^T = b,
+//     A = sum_j V_j [W, grad W](x - x_j) (outer) [1, (x_j - x)],   b = sum_j V_j f_j [W, grad W],
+// with V_j = m_j / rho_j and grad W(x - x_j) = F(r) (x - x_j). Linear fields are reproduced
+// exactly, whatever the particle disorder and however truncated the support (near a free
+// surface or the edge of the donor region), as long as A is well conditioned.
+// The same matrix serves f = rho and every velocity component: one LU factorisation (partial
+// pivoting), D+1 right-hand sides.
+//
+// Safeguards, as in DualSPHysics' VRes (same first-order Liu method, threshold 100):
+//  - the system is written in dimensionless form (rows [W, h grad W], columns [1, (x_j - x)/h],
+//    unknowns [f, h grad f]); when its condition number ||A||inf ||A^-1||inf exceeds cond_limit
+//    (default 100) the result falls back to the Shepard average f = sum V f W / sum V W, which
+//    keeps constants exact and never overshoots the donor values;
+//  - when the Shepard sum sum V W is below 0.05 there is no fluid at the point: rho = vel = 0,
+//    corrected = false, and the caller deletes the buffer particle.
+// The dimensionless form matters: written in metres, A has entries of order 1, h and 1/h, and a
+// plain ||A|| ||A^-1|| would be about 1 in the bulk but grow like 1/h^2 near an edge
+// (DualSPHysics rescales its estimate by a power of h instead). With the diagonal scaling the
+// number does not depend on the units: about 1.1 in the bulk of a regular lattice, under 2 in a
+// lattice jittered by 0.25 dp, 20 - 30 on a flat face, over 100 from about 0.5 dp beyond a face
+// (h = 1.3 dp; tests/test_vres_interpolation.cpp).
+//
+// Only Kind::fluid donors count: buffer particles (themselves interpolated) and walls are skipped.
+// The donor grid must have been sorted since the donor particles last moved, as for every pass.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "vrsph/core/kernel.hpp"
+#include "vrsph/core/vec.hpp"
+#include "vrsph/particles/cell_grid.hpp"
+#include "vrsph/particles/particles.hpp"
+
+namespace vrsph {
+
+template <int D>
+struct InterpolatedState {
+  double rho = 0.0;        // kg/m^3
+  Vec<D> vel{};            // m/s
+  double shepard = 0.0;    // sum_j V_j W(x - x_j): donor support; < 0.05 means no fluid here
+  double div_r = 0.0;      // -sum_j V_j (x - x_j) . grad W : about D inside the fluid, used for the free-surface test
+  bool corrected = false;  // true: first-order corrected; false: Shepard fallback (or no support)
+  double cond = 0.0;       // dimensionless condition number of A (infinity if singular; 0 if no support)
+};
+
+inline constexpr double kVresShepardMin = 0.05;   // below: no fluid at the point
+inline constexpr double kVresCondLimit = 100.0;   // above: Shepard fallback
+
+// Values at point x from the Kind::fluid particles of a donor level (particle set, its cell grid
+// after a sort, its kernel). Points outside the grid's domain, or with no donor in reach, return
+// shepard = 0. No heap allocation. Throws std::logic_error if the grid is out of date (the first
+// particle is not in the cell the grid recorded for it).
+template <int D>
+InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D>& donors,
+                                            const CellGrid<D>& grid, const WendlandC2<D>& kernel,
+                                            double cond_limit = kVresCondLimit);
+
+// The same for many points, in parallel (OpenMP, static schedule): out[i] for points[i]. out is
+// resized to points.size() (no allocation once it is large enough).
+template <int D>
+void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet<D>& donors,
+                            const CellGrid<D>& grid, const WendlandC2<D>& kernel,
+                            std::vector<InterpolatedState<D>>& out,
+                            double cond_limit = kVresCondLimit);
+
+// Small dense N x N LU factorisation with partial pivoting (Golub & Van Loan, algorithm 3.4.1):
+// P A = L U with L unit lower triangular, both stored in lu. A pivot below 1e-14 ||A||inf marks
+// the matrix singular (solve() must not be called then).
+template <int N>
+struct SmallLu {
+  using Matrix = std::array<std::array<double, N>, N>;  // m[row][col]
+  using Vector = std::array<double, N>;
+
+  Matrix lu{};
+  std::array<int, N> perm{};  // row perm[i] of A is row i of P A
+  double norm_inf = 0.0;      // ||A||inf (largest absolute row sum)
+  bool singular = false;
+
+  explicit SmallLu(const Matrix& a) : lu(a) {
+    for (int i = 0; i < N; ++i) {
+      perm[i] = i;
+      double s = 0.0;
+      for (int j = 0; j < N; ++j) s += std::fabs(a[i][j]);
+      norm_inf = std::max(norm_inf, s);
+    }
+    const double tiny = 1e-14 * norm_inf;
+    for (int k = 0; k < N; ++k) {
+      int p = k;
+      for (int i = k + 1; i < N; ++i)
+        if (std::fabs(lu[i][k]) > std::fabs(lu[p][k])) p = i;
+      if (!(std::fabs(lu[p][k]) > tiny)) {  // also catches NaN
+        singular = true;
+        return;
+      }
+      std::swap(lu[p], lu[k]);
+      std::swap(perm[p], perm[k]);
+      const double inv_pivot = 1.0 / lu[k][k];
+      for (int i = k + 1; i < N; ++i) {
+        const double l = lu[i][k] * inv_pivot;
+        lu[i][k] = l;
+        for (int j = k + 1; j < N; ++j) lu[i][j] -= l * lu[k][j];
+      }
+    }
+  }
+
+  // x with A x = b.
+  Vector solve(const Vector& b) const {
+    Vector y{};
+    for (int i = 0; i < N; ++i) {  // L y = P b
+      double s = b[perm[i]];
+      for (int j = 0; j < i; ++j) s -= lu[i][j] * y[j];
+      y[i] = s;
+    }
+    for (int i = N - 1; i >= 0; --i) {  // U x = y
+      double s = y[i];
+      for (int j = i + 1; j < N; ++j) s -= lu[i][j] * y[j];
+      y[i] = s / lu[i][i];
+    }
+    return y;
+  }
+
+  // ||A||inf ||A^-1||inf, the columns of A^-1 solved one by one; infinity when singular.
+  double cond_inf() const {
+    if (singular) return std::numeric_limits<double>::infinity();
+    std::array<double, N> row_sum{};
+    for (int c = 0; c < N; ++c) {
+      Vector e{};
+      e[c] = 1.0;
+      const Vector col = solve(e);
+      for (int r = 0; r < N; ++r) row_sum[r] += std::fabs(col[r]);
+    }
+    double inv_norm = 0.0;
+    for (int r = 0; r < N; ++r) inv_norm = std::max(inv_norm, row_sum[r]);
+    return norm_inf * inv_norm;
+  }
+};
+
+}  // namespace vrsph
