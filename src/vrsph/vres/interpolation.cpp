@@ -35,7 +35,8 @@ struct TableWindow {
     reach = grid.reach();
     const Vec<D>& x0 = ps.pos[0];
     if (!grid.inside(x0) || grid.cell_of(x0) != cells[0]) {
-      throw std::logic_error("vres interpolation: the donor grid is out of date (sort it after moving particles)");
+      throw std::logic_error(
+          "vres interpolation: the donor grid is out of date (sort it after moving particles)");
     }
     const double cs = grid.cell_size();
     Vec<D> centre{};
@@ -66,7 +67,8 @@ struct TableWindow {
     bool shape_ok = true;
     for (int k = 0; k < D; ++k) {
       total *= n[k];
-      shape_ok = shape_ok && n[k] >= 2 * reach + 1 && ref_table[k] >= reach && ref_table[k] < n[k] - reach;
+      shape_ok = shape_ok && n[k] >= 2 * reach + 1 && ref_table[k] >= reach &&
+                 ref_table[k] < n[k] - reach;
     }
     valid = shape_ok && total == grid.cell_count() && base == cells[0];
   }
@@ -173,9 +175,11 @@ void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet
 }
 
 template InterpolatedState<2> interpolate_from_level(const Vec<2>&, const ParticleSet<2>&,
-                                                     const CellGrid<2>&, const WendlandC2<2>&, double);
+                                                     const CellGrid<2>&, const WendlandC2<2>&,
+                                                     double);
 template InterpolatedState<3> interpolate_from_level(const Vec<3>&, const ParticleSet<3>&,
-                                                     const CellGrid<3>&, const WendlandC2<3>&, double);
+                                                     const CellGrid<3>&, const WendlandC2<3>&,
+                                                     double);
 template void interpolate_from_level(const std::vector<Vec<2>>&, const ParticleSet<2>&,
                                      const CellGrid<2>&, const WendlandC2<2>&,
                                      std::vector<InterpolatedState<2>>&, double);

@@ -52,9 +52,10 @@ struct InterpolatedState {
   double rho = 0.0;        // kg/m^3
   Vec<D> vel{};            // m/s
   double shepard = 0.0;    // sum_j V_j W(x - x_j): donor support; < 0.05 means no fluid here
-  double div_r = 0.0;      // -sum_j V_j (x - x_j) . grad W : about D inside the fluid, used for the free-surface test
+  double div_r = 0.0;      // -sum_j V_j (x - x_j) . grad W: about D inside the fluid, about D/2
+                           // on a flat free surface (the free-surface test)
   bool corrected = false;  // true: first-order corrected; false: Shepard fallback (or no support)
-  double cond = 0.0;       // dimensionless condition number of A (infinity if singular; 0 if no support)
+  double cond = 0.0;       // dimensionless cond_inf(A) (infinity: singular; 0: no support)
 };
 
 inline constexpr double kVresShepardMin = 0.05;   // below: no fluid at the point
