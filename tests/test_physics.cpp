@@ -81,11 +81,17 @@ TEST(PhysicsDamBreak, FrontFollowsExperiment) {
 namespace vrsph {
 namespace {
 
-// Keys the case format accepts for later models are refused by this solver, not ignored.
-TEST(PhysicsScope, UnimplementedModelsAreRefused) {
+// [[refinement]] is implemented (variable resolution); a box too small for its buffers is
+// refused with a message naming the key.
+TEST(PhysicsScope, TightRefinementBoxIsRefused) {
   CaseSpec spec = load_case("dam_break_2d.toml", {"resolution.dp=0.05"});
   spec.refinements.push_back(RefinementBox{{0.0, 0.0, 0.0}, {0.5, 0.5, 0.0}, 2, 4.0});
-  EXPECT_THROW(Simulation<2> sim(spec), std::invalid_argument);
+  try {
+    Simulation<2> sim(spec);
+    FAIL() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("refinement.0.max"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "vrsph/particles/cell_grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -74,6 +75,21 @@ std::int64_t CellGrid<D>::cell_of(const Vec<D>& x) const {
     c += ck * stride_[k];
   }
   return c;
+}
+
+template <int D>
+bool CellGrid<D>::stencil_cell(const Vec<D>& x, std::int64_t& c) const {
+  c = 0;
+  for (int k = 0; k < D; ++k) {
+    const double a = std::floor((x[k] - min_[k]) * inv_cell_);
+    if (!(a > -1e15 && a < 1e15)) return false;  // NaN or absurdly far
+    const std::int64_t t = static_cast<std::int64_t>(a) - lo_[k];
+    if (t < 0 || t >= n_[k]) return false;  // more than `reach` cells from every particle
+    // occupied cells lie in [reach, n - 1 - reach]: the clamped stencil still covers those
+    // within reach of t
+    c += std::clamp<std::int64_t>(t, reach_, n_[k] - 1 - reach_) * stride_[k];
+  }
+  return true;
 }
 
 namespace {

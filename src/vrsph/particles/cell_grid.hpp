@@ -29,6 +29,10 @@ class CellGrid {
            int cells_per_support);
 
   bool inside(const Vec<D>& x) const;
+  // For a query point anywhere (also beyond the particle cloud or the domain): the cell c whose
+  // stencil (for_each_run) holds every particle within `reach` cells of x. False when no
+  // particle can be that close. Valid after a sort.
+  bool stencil_cell(const Vec<D>& x, std::int64_t& c) const;
   std::int64_t cell_of(const Vec<D>& x) const;  // linear index; x inside, after a sort
 
   // Sorts all particle arrays by cell (stable), after deleting particles outside the domain.

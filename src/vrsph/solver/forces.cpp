@@ -214,6 +214,11 @@ ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
 #pragma omp for schedule(dynamic, 512)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::uint32_t>(ii);
+    if (ps.kind[i] == Kind::buffer) {  // neighbours only: v and rho come from another level
+      ps.acc[i] = Vec<D>{};
+      ps.drho[i] = 0.0;
+      continue;
+    }
     Accum a;
     fluid_cand.gather(nb, grid, cells[i], Group::fluid);
     if (ps.kind[i] == Kind::wall) {

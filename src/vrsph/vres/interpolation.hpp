@@ -62,9 +62,8 @@ inline constexpr double kVresShepardMin = 0.05;   // below: no fluid at the poin
 inline constexpr double kVresCondLimit = 100.0;   // above: Shepard fallback
 
 // Values at point x from the Kind::fluid particles of a donor level (particle set, its cell grid
-// after a sort, its kernel). Points outside the grid's domain, or with no donor in reach, return
-// shepard = 0. No heap allocation. Throws std::logic_error if the grid is out of date (the first
-// particle is not in the cell the grid recorded for it).
+// after a sort, its kernel). Points with no donor in reach (also beyond the particle cloud or
+// the domain) return shepard = 0. No heap allocation.
 template <int D>
 InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D>& donors,
                                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,

@@ -26,9 +26,10 @@ template <int D>
 struct Box {
   Vec<D> lo{}, hi{};
 
+  // Half-open, lo <= x < hi, so a lattice that fits the box gives each level the same volume.
   bool contains(const Vec<D>& x) const {
     for (int k = 0; k < D; ++k)
-      if (x[k] < lo[k] || x[k] > hi[k]) return false;
+      if (x[k] < lo[k] || x[k] >= hi[k]) return false;
     return true;
   }
   Box grown(double w) const {  // w < 0 shrinks
@@ -39,7 +40,11 @@ struct Box {
     }
     return b;
   }
-  bool contains_box(const Box& o) const { return contains(o.lo) && contains(o.hi); }
+  bool contains_box(const Box& o) const {
+    for (int k = 0; k < D; ++k)
+      if (o.lo[k] < lo[k] || o.hi[k] > hi[k]) return false;
+    return true;
+  }
   bool overlaps(const Box& o) const {
     for (int k = 0; k < D; ++k)
       if (o.hi[k] < lo[k] || o.lo[k] > hi[k]) return false;
