@@ -41,6 +41,7 @@ struct Candidates {
       std::copy(nb.p.begin() + b, nb.p.begin() + e, a.p.begin() + k);
       std::copy(nb.vol.begin() + b, nb.vol.begin() + e, a.vol.begin() + k);
       std::copy(nb.mass.begin() + b, nb.mass.begin() + e, a.mass.begin() + k);
+      std::copy(nb.wall_vol.begin() + b, nb.wall_vol.begin() + e, a.wall_vol.begin() + k);
       k += e - b;
     });
     for (; k < len; ++k) {  // dummies: outside every support, and zero in every term
@@ -52,6 +53,7 @@ struct Candidates {
       a.p[k] = 0.0;
       a.vol[k] = 0.0;
       a.mass[k] = 0.0;
+      a.wall_vol[k] = 0.0;
     }
   }
 
@@ -64,19 +66,21 @@ struct Candidates {
     a.p.resize(n);
     a.vol.resize(n);
     a.mass.resize(n);
+    a.wall_vol.resize(n);
   }
 };
 
 // Raw pointers into a candidate block, read by the vector loops.
 template <int D>
 struct BlockView {
-  const double *x0, *x1, *x2, *v0, *v1, *v2, *rho, *p, *vol, *mass;
+  const double *x0, *x1, *x2, *v0, *v1, *v2, *rho, *p, *vol, *mass, *wall_vol;
   std::ptrdiff_t len;
   explicit BlockView(const Candidates<D>& cand)
       : x0(cand.a.x[0].data()), x1(cand.a.x[1].data()), x2(cand.a.x[D - 1].data()),
         v0(cand.a.v[0].data()), v1(cand.a.v[1].data()), v2(cand.a.v[D - 1].data()),
         rho(cand.a.rho.data()), p(cand.a.p.data()), vol(cand.a.vol.data()),
-        mass(cand.a.mass.data()), len(static_cast<std::ptrdiff_t>(cand.len)) {}
+        mass(cand.a.mass.data()), wall_vol(cand.a.wall_vol.data()),
+        len(static_cast<std::ptrdiff_t>(cand.len)) {}
 };
 
 // Position and velocity of particle i, padded to 3 components.
@@ -178,7 +182,7 @@ inline void wall_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, s
   const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
   const BlockView<D> c(cand);
   const double *xj0 = c.x0, *xj1 = c.x1, *xj2 = c.x2, *vj0 = c.v0, *vj1 = c.v1, *vj2 = c.v2;
-  const double* vol = c.vol;
+  const double* vol = c.wall_vol;  // buffers excluded: see NeighbourArrays::wall_vol
   const std::ptrdiff_t len = c.len;
   double drho = 0.0, vdt = -1e300, npair = 0.0;
 #pragma omp simd reduction(+ : drho, npair) reduction(max : vdt)

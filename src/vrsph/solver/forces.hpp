@@ -28,6 +28,8 @@ template <int D>
 struct NeighbourArrays {
   std::array<std::vector<double>, D> x, v;
   std::vector<double> rho, p, vol, mass;
+  std::vector<double> wall_vol;  // volume seen by wall continuity: 0 for buffer particles, whose
+                                 // motion is imposed and must not compress the wall
 
   // Copies the particle fields and fills ps.p from the EOS on the way.
   void pack(ParticleSet<D>& ps, const TaitEos& eos) {
@@ -40,6 +42,7 @@ struct NeighbourArrays {
     p.resize(n);
     vol.resize(n);
     mass.resize(n);
+    wall_vol.resize(n);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       for (int k = 0; k < D; ++k) {
@@ -51,6 +54,7 @@ struct NeighbourArrays {
       p[i] = ps.p[i];
       vol[i] = ps.mass[i] / ps.rho[i];
       mass[i] = ps.mass[i];
+      wall_vol[i] = ps.kind[i] == Kind::buffer ? 0.0 : vol[i];
     }
   }
 };

@@ -437,10 +437,24 @@ void Simulation<D>::check_state(const Level<D>& L) const {
         is_finite ? "density" : "finite"));
   }
   if (dt_next_ < L.prm.dt_min) {
+    // Name the particle with the largest acceleration over all levels: where to look.
+    std::string culprit = "the fastest particles or largest accelerations";
+    double amax = -1.0;
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      const ParticleSet<D>& q = levels_[l].ps;
+      for (std::size_t i = 0; i < q.size(); ++i) {
+        if (q.kind[i] != Kind::fluid || norm(q.acc[i]) <= amax) continue;
+        amax = norm(q.acc[i]);
+        std::string where = fmt::format("({:.6g}", q.pos[i][0]);
+        for (int k = 1; k < D; ++k) where += fmt::format(", {:.6g}", q.pos[i][k]);
+        culprit = fmt::format("largest acceleration {:.3g} m/s^2 at fluid particle id {} of level {} at {})",
+                              amax, q.id[i], l, where);
+      }
+    }
     throw InstabilityError(fmt::format(
         "unstable at t = {:.6g} s, step {}: time step {:.3g} s fell below 0.05 h/c0 = {:.3g} s "
-        "(check: dt; limited by {})",
-        t_, step_, dt_next_, L.prm.dt_min, "the fastest particles or largest accelerations"));
+        "(check: dt; {})",
+        t_, step_, dt_next_, L.prm.dt_min, culprit));
   }
 }
 

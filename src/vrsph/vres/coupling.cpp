@@ -6,6 +6,7 @@ namespace vrsph {
 namespace {
 
 constexpr double kMinShepard = 0.05;  // below: no donor fluid around the point
+constexpr double kMinSpacing = 0.5;   // x dp: no particle is created closer than this to another
 
 // Mass the donor flow carries across a face element in dt: -rho (u . n) dA dt (n out of the
 // buffer, so inflow into the buffer is positive). Once the stored mass is negative only
@@ -13,6 +14,26 @@ constexpr double kMinShepard = 0.05;  // below: no donor fluid around the point
 inline double accumulate_mass(double stored, double rho, double u_n, double area, double dt) {
   const double dm = -rho * u_n * area * dt;
   return (stored < 0.0 && dm < 0.0) ? stored : stored + dm;
+}
+
+// True when a particle of the level (or one created in this pass) lies closer than `min_dist`
+// to x: a new particle there would overlap it. This happens near box corners, where the points
+// of two faces create at the same spot, and where the flow stalls. Uses the level's grid of
+// the last sort (particles have moved less than a cell since).
+template <int D>
+bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t first_new) {
+  const double d2 = min_dist * min_dist;
+  for (std::size_t i = first_new; i < L.ps.size(); ++i)
+    if (norm2(L.ps.pos[i] - x) < d2) return true;
+  std::int64_t c = 0;
+  if (!L.grid.stencil_cell(x, c)) return false;
+  bool found = false;
+  for (Group g : {Group::fluid, Group::wall}) {
+    L.grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) {
+      for (std::uint32_t j = b; j < e && !found; ++j) found = norm2(L.ps.pos[j] - x) < d2;
+    });
+  }
+  return found;
 }
 
 }  // namespace
@@ -33,14 +54,18 @@ void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64
       st[static_cast<std::size_t>(q)] =
           interpolate_from_level<D>(P.x, donor.ps, donor.grid, donor.prm.kernel);
     }
+    const std::size_t first_new = L.ps.size();
     for (std::size_t q = 0; q < L.mass_points.size(); ++q) {
       MassPoint<D>& P = L.mass_points[q];
       const InterpolatedState<D>& s = st[q];
-      if (s.shepard < kMinShepard || s.div_r < threshold) continue;  // not inside the fluid
+      // inside the fluid: enough donor fluid, and a full support once walls are counted
+      if (s.shepard < kMinShepard || s.div_r + s.div_r_walls < threshold) continue;
       P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), P.area, dt);
       if (P.mass < m) continue;
+      const Vec<D> x_new = P.x - (0.5 * L.prm.dp) * P.n;
+      if (crowded(L, x_new, kMinSpacing * L.prm.dp, first_new)) continue;  // mass stays stored
       P.mass -= m;
-      L.ps.push_back(next_id++, Kind::buffer, P.x - (0.5 * L.prm.dp) * P.n, s.vel, s.rho, m);
+      L.ps.push_back(next_id++, Kind::buffer, x_new, s.vel, s.rho, m);
       ++tally.created;
       tally.created_mass += m;
     }

@@ -56,6 +56,14 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
   });
   out.shepard = s.a[0][0];
   out.div_r = s.div_r;
+  grid.for_each_run(c, Group::wall, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t j = begin; j < end; ++j) {
+      const Vec<D> r = x - donors.pos[j];
+      const double r2 = norm2(r);
+      if (r2 >= kernel.support2) continue;
+      out.div_r_walls -= donors.mass[j] / donors.rho[j] * kernel.f(std::sqrt(r2)) * r2;
+    }
+  });
   if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
   const SmallLu<D + 1> lu(s.a);
   out.cond = lu.cond_inf();
