@@ -319,4 +319,26 @@ TEST(Restart, HaltedRunResumesToTheSameBytes3D) {
   expect_same_outputs(a, b, 4, true);
 }
 
+TEST(Restart, HaltedVariableResolutionRunResumesToTheSameBytes) {
+  // droplet_vr_2d at dp 2e-4 / 1e-4 to 6 ms, a snapshot every 1.5 ms: two levels, buffers,
+  // mass points with stored masses and kind changes all go through the checkpoint.
+  TempDir dir;
+  const fs::path a = dir / "a", b = dir / "b";
+  auto args = [&](const fs::path& out) {
+    return std::vector<std::string>{"run", (kCases / "droplet_vr_2d.toml").string(), "--out",
+                                    out.string(), "--quiet", "--threads", "1", "--set",
+                                    "resolution.dp=2e-4", "--set", "case.end_time=0.006", "--set",
+                                    "output.interval=0.0015"};
+  };
+  const CmdResult ra = dir.run(args(a));
+  ASSERT_EQ(ra.status, 0) << ra;
+  const CmdResult halted = dir.run(with(args(b), {"--halt-after-output", "2"}));
+  ASSERT_EQ(halted.status, kExitHalted) << halted;
+  const CmdResult resumed = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1"});
+  ASSERT_EQ(resumed.status, 0) << resumed;
+  expect_same_outputs(a, b, 4, true);
+  const auto lines = read_lines(a / "series.csv");
+  EXPECT_NE(lines.front().find("n_fluid_L1"), std::string::npos);
+}
+
 }  // namespace
