@@ -23,6 +23,17 @@ int check_impl(CaseSpec& spec) {
              ps.count(Kind::wall), ps.size());
   fmt::print("  dp = {:g} m, h = {:g} m ({:g} dp), particle mass = {:g} kg\n", spec.dp,
              sim.params().h, spec.h_over_dp, sim.params().mass);
+  for (std::size_t l = 1; l < sim.level_count(); ++l) {
+    const auto& L = sim.level(l);
+    fmt::print("  level {} (inside refinement box, parent level {}): dp = {:g} m, h = {:g} m, "
+               "{} fluid, {} buffer, {} wall, {} mass points\n",
+               l, L.region.parent, L.prm.dp, L.prm.h, L.ps.count(Kind::fluid),
+               L.ps.count(Kind::buffer), L.ps.count(Kind::wall), L.mass_points.size());
+  }
+  if (sim.level_count() > 1) {
+    fmt::print("  level 0 (coarsest): {} buffer, {} mass points\n",
+               ps.count(Kind::buffer), sim.level(0).mass_points.size());
+  }
   fmt::print("  c0 = {:.6g} m/s (max_speed {:.6g} m/s), B = {:.6g} Pa\n", sim.setup().c0,
              sim.setup().max_speed, sim.params().eos.b);
   fmt::print("  first dt = {:.6g} s, about {:.0f} steps to t = {:g} s at that dt\n", sim.dt_next(),

@@ -12,6 +12,7 @@
 #include "vrsph/driver/checkpoint.hpp"
 #include "vrsph/driver/run_outputs.hpp"
 #include "vrsph/output/atomic_file.hpp"
+#include "vrsph/output/boxes_vtp.hpp"
 #include "vrsph/output/progress.hpp"
 #include "vrsph/output/summary.hpp"
 #include "vrsph/setup/case_parser.hpp"
@@ -47,7 +48,8 @@ void prepare_out_dir(const std::filesystem::path& dir, bool force) {
       const std::string n = e.path().filename().string();
       const bool ours = n.starts_with("particles_") || n.starts_with("line_") ||
                         n == "particles.pvd" || n == "series.csv" || n == "summary.json" ||
-                        n == "case.toml" || n == "checkpoint.bin";
+                        n == "case.toml" || n == "checkpoint.bin" ||
+                        n == "refinement_boxes.vtp";
       if (ours && e.is_regular_file()) fs::remove(e.path());
     }
   }
@@ -94,6 +96,30 @@ void restore_from_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
   sim.resort();
 }
 
+// The refinement boxes and both buffer edges of each, for ParaView.
+template <int D>
+void write_refinement_boxes(const Simulation<D>& sim, const std::filesystem::path& path) {
+  std::vector<OutlineBox> boxes;
+  auto outline = [&](const Box<D>& b, int level, int role) {
+    OutlineBox o;
+    for (int k = 0; k < D; ++k) {
+      o.lo[static_cast<std::size_t>(k)] = b.lo[k];
+      o.hi[static_cast<std::size_t>(k)] = b.hi[k];
+    }
+    o.level = level;
+    o.role = role;
+    boxes.push_back(o);
+  };
+  for (std::size_t l = 1; l < sim.level_count(); ++l) {
+    const auto& r = sim.level(l).region;
+    outline(r.box, static_cast<int>(l), 0);
+    outline(r.box.grown(r.width), static_cast<int>(l), 1);
+    for (const auto& c : sim.level(static_cast<std::size_t>(r.parent)).region.children)
+      if (c.level == static_cast<int>(l)) outline(c.box.grown(-c.width), r.parent, 2);
+  }
+  write_boxes_vtp(path, boxes, D);
+}
+
 template <int D>
 int run_impl(CaseSpec& spec, const RunOptions& opt) {
   Simulation<D> sim(spec, opt.cells_per_support);  // fills spec.max_speed when derived
@@ -110,6 +136,7 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
     }
   }
   write_file_atomic(opt.out_dir / "case.toml", case_to_toml(spec));
+  if (sim.level_count() > 1) write_refinement_boxes(sim, opt.out_dir / "refinement_boxes.vtp");
   RunOutputs<D> out(spec, opt.out_dir, !opt.resume, sim.time());
   const int threads = omp_get_max_threads();
   if (!opt.quiet) {
