@@ -10,6 +10,7 @@
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/vres/coupling.hpp"
+#include "vrsph/vres/interpolation.hpp"
 #include "vrsph/vres/levels.hpp"
 
 namespace vrsph {
@@ -325,28 +326,78 @@ DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
   return best;
 }
 
-// One force evaluation of a level: the surface passes (when surface tension or shifting is on),
-// then the pair forces with the surface-tension acceleration added.
+// The surface passes of every level (when surface tension or shifting is on): pass 1 (M,
+// lambda, grad C, div r) on all levels first, so that buffer particles can take lambda from the
+// other level (exchange_buffer_lambda) before the normals and curvature (passes 2 and 3) use it.
 template <int D>
-ForceStats Simulation<D>::evaluate_forces(Level<D>& L) {
-  double t0 = now_seconds();
-  const bool st = L.prm.sigma > 0.0;
-  if (st || L.prm.shifting.model != ShiftingModel::none) surface_sums(L.prm, L.ps, L.grid, L.sf);
-  if (st) surface_tension_force(L.prm, L.ps, L.grid, L.sf);
+void Simulation<D>::surface_fields_all() {
+  const double t0 = now_seconds();
+  const SolverParams<D>& prm = levels_[0].prm;
+  const bool st = prm.sigma > 0.0;
+  if (!st && prm.shifting.model == ShiftingModel::none) return;
+  for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.sf);
+  if (st) {
+    if (levels_.size() > 1) exchange_buffer_lambda();
+    for (Level<D>& L : levels_) surface_tension_force(L.prm, L.ps, L.grid, L.sf);
+  }
   times_.surface += now_seconds() - t0;
-  t0 = now_seconds();
-  const ForceStats s =
-      compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr);
+}
+
+// Buffer particles near the outer edge of their shell have a truncated support, so their own
+// lambda sees a free surface that is not there, and it would bend the normals of the fluid next
+// to the interface. They take lambda from the other level's fluid instead (Shepard average),
+// where the support is full: the surface-tension quantities near the interface come from the
+// adjacent level, the remedy the poster proposes for the lambda mismatch across the interface.
+template <int D>
+void Simulation<D>::exchange_buffer_lambda() {
+  for (Level<D>& L : levels_) {
+    const auto n = static_cast<std::int64_t>(L.ps.size());
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::int64_t ii = 0; ii < n; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (L.ps.kind[i] != Kind::buffer) continue;
+      const int donor = L.region.classify(L.ps.pos[i]).donor;
+      if (donor < 0) continue;  // moved into the fluid region during the step: kind changes later
+      const Level<D>& dl = levels_[static_cast<std::size_t>(donor)];
+      L.sf.lambda[i] = shepard_field<D>(L.ps.pos[i], dl.ps, dl.grid, dl.prm.kernel, dl.sf.lambda,
+                                        L.sf.lambda[i]);
+    }
+  }
+}
+
+// One force evaluation of all levels: the surface passes, then the pair forces of each level
+// with the surface-tension acceleration added.
+template <int D>
+ForceStats Simulation<D>::evaluate_forces() {
+  surface_fields_all();
+  const double t0 = now_seconds();
+  const bool st = levels_[0].prm.sigma > 0.0;
+  ForceStats s;
+  for (Level<D>& L : levels_) {
+    const ForceStats a =
+        compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr);
+    s.max_acc = std::max(s.max_acc, a.max_acc);
+    s.max_visc_dt = std::max(s.max_visc_dt, a.max_visc_dt);
+    s.pairs += a.pairs;
+  }
   times_.forces += now_seconds() - t0;
   return s;
 }
 
 template <int D>
 const SurfaceFields<D>& Simulation<D>::surface_fields_now(std::size_t k) {
-  Level<D>& L = levels_[k];
-  surface_sums(L.prm, L.ps, L.grid, L.sf);
-  if (L.prm.sigma > 0.0) surface_tension_force(L.prm, L.ps, L.grid, L.sf);
-  return L.sf;
+  if (k == 0) {  // all levels at once (lambda exchange); later levels reuse the result
+    const double keep = times_.surface;
+    SolverParams<D>& p0 = levels_[0].prm;
+    const bool none = p0.sigma <= 0.0 && p0.shifting.model == ShiftingModel::none;
+    if (none) {
+      for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.sf);
+    } else {
+      surface_fields_all();
+    }
+    times_.surface = keep;
+  }
+  return levels_[k].sf;
 }
 
 // Variable resolution after a step (PHYSICS.md section 5): mass points, kind changes and
@@ -377,12 +428,12 @@ void Simulation<D>::step() {
     s.max_visc_dt = std::max(s.max_visc_dt, a.max_visc_dt);
     s.pairs += a.pairs;
   };
-  for (Level<D>& L : levels_) merge(evaluate_forces(L));
+  merge(evaluate_forces());
   double t0 = now_seconds();
   for (Level<D>& L : levels_) predictor(L, dt);
   times_.update += now_seconds() - t0;
   sort_all();
-  for (Level<D>& L : levels_) merge(evaluate_forces(L));
+  merge(evaluate_forces());
   t0 = now_seconds();
   for (Level<D>& L : levels_) corrector(L, dt);
   times_.update += now_seconds() - t0;

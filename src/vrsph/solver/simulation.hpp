@@ -114,7 +114,9 @@ class Simulation {
   void predictor(Level<D>& L, double dt);
   void corrector(Level<D>& L, double dt);
   void check_state(const Level<D>& L) const;
-  ForceStats evaluate_forces(Level<D>& L);
+  ForceStats evaluate_forces();
+  void surface_fields_all();
+  void exchange_buffer_lambda();
   DtChoice next_dt(const ForceStats& s) const;
   void couple_levels(double dt);
 

@@ -90,6 +90,26 @@ InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D
 }
 
 template <int D>
+double shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGrid<D>& grid,
+                     const WendlandC2<D>& kernel, const std::vector<double>& field,
+                     double fallback) {
+  std::int64_t c = 0;
+  if (donors.size() == 0 || !grid.stencil_cell(x, c)) return fallback;
+  double sw = 0.0, sfw = 0.0;
+  grid.for_each_run(c, Group::fluid, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t j = begin; j < end; ++j) {
+      if (donors.kind[j] != Kind::fluid) continue;
+      const double r2 = norm2(x - donors.pos[j]);
+      if (r2 >= kernel.support2) continue;
+      const double vw = donors.mass[j] / donors.rho[j] * kernel.w(std::sqrt(r2));
+      sw += vw;
+      sfw += vw * field[j];
+    }
+  });
+  return sw >= kVresShepardMin ? sfw / sw : fallback;
+}
+
+template <int D>
 void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet<D>& donors,
                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
                             std::vector<InterpolatedState<D>>& out, double cond_limit) {
@@ -113,5 +133,10 @@ template void interpolate_from_level(const std::vector<Vec<2>>&, const ParticleS
 template void interpolate_from_level(const std::vector<Vec<3>>&, const ParticleSet<3>&,
                                      const CellGrid<3>&, const WendlandC2<3>&,
                                      std::vector<InterpolatedState<3>>&, double);
+
+template double shepard_field<2>(const Vec<2>&, const ParticleSet<2>&, const CellGrid<2>&,
+                                 const WendlandC2<2>&, const std::vector<double>&, double);
+template double shepard_field<3>(const Vec<3>&, const ParticleSet<3>&, const CellGrid<3>&,
+                                 const WendlandC2<3>&, const std::vector<double>&, double);
 
 }  // namespace vrsph
