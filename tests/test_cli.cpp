@@ -611,4 +611,24 @@ TEST(CliThreads, OneAndTwoThreadsGiveIdenticalFiles) {
   EXPECT_EQ(nlohmann::json::parse(read_text(b / "summary.json")).at("threads").get<int>(), 2);
 }
 
+// The same with two resolution levels (droplet_vr_2d at dp 2e-4 / 1e-4, 3 ms): buffer
+// interpolation, mass points and kind changes do not depend on the thread count either.
+TEST(CliThreads, VariableResolutionIndependentOfThreadCount) {
+  TempDir dir;
+  auto args = [&](const fs::path& out, int threads) {
+    return std::vector<std::string>{"run", (kCases / "droplet_vr_2d.toml").string(), "--out",
+                                    out.string(), "--quiet", "--threads", std::to_string(threads),
+                                    "--set", "resolution.dp=2e-4", "--set", "case.end_time=0.003",
+                                    "--set", "output.interval=0.0015"};
+  };
+  const fs::path a = dir / "t1", b = dir / "t2";
+  ASSERT_EQ(dir.run(args(a, 1)).status, 0);
+  ASSERT_EQ(dir.run(args(b, 2)).status, 0);
+  for (int k = 0; k <= 2; ++k) {
+    EXPECT_TRUE(same_bytes(a / snapshot(k, "csv"), b / snapshot(k, "csv"))) << k;
+  }
+  EXPECT_TRUE(same_bytes(a / "series.csv", b / "series.csv"));
+  EXPECT_TRUE(same_bytes(a / "refinement_boxes.vtp", b / "refinement_boxes.vtp"));
+}
+
 }  // namespace
