@@ -58,8 +58,12 @@ void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64
     for (std::size_t q = 0; q < L.mass_points.size(); ++q) {
       MassPoint<D>& P = L.mass_points[q];
       const InterpolatedState<D>& s = st[q];
-      // inside the fluid: enough donor fluid, and a full support once walls are counted
-      if (s.shepard < kMinShepard || s.div_r + s.div_r_walls < threshold) continue;
+      // Inside the fluid: enough donor fluid, and either a full support once walls are counted
+      // or a donor particle closer than the finer spacing (thin layers, such as a surge front,
+      // never reach the free-surface threshold but still carry mass across).
+      const double close = std::min(L.prm.dp, levels[static_cast<std::size_t>(P.donor)].prm.dp);
+      if (s.shepard < kMinShepard) continue;
+      if (s.div_r + s.div_r_walls < threshold && s.nearest >= close) continue;
       P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), P.area, dt);
       if (P.mass < m) continue;
       const Vec<D> x_new = P.x - (0.5 * L.prm.dp) * P.n;
