@@ -1,0 +1,116 @@
+#include "vrsph/solver/level_setup.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "vrsph/physics/pair_terms.hpp"
+#include "vrsph/setup/geometry.hpp"
+
+namespace vrsph {
+
+// Default domain: bounding box of all particles grown by 10% of its size on each side (at least
+// 4h) and by a further 50% upwards against gravity, where splashes go.
+template <int D>
+void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>& lo, Vec<D>& hi) {
+  for (int k = 0; k < D; ++k) {
+    lo[k] = 1e300;
+    hi[k] = -1e300;
+  }
+  for (const auto& x : ps.pos) {
+    for (int k = 0; k < D; ++k) {
+      lo[k] = std::min(lo[k], x[k]);
+      hi[k] = std::max(hi[k], x[k]);
+    }
+  }
+  for (int k = 0; k < D; ++k) {
+    const double ext = hi[k] - lo[k];
+    const double m = std::max(0.1 * ext, 4.0 * h);
+    lo[k] -= m + (up[k] < -0.5 ? 0.5 * ext : 0.0);
+    hi[k] += m + (up[k] > 0.5 ? 0.5 * ext : 0.0);
+  }
+}
+
+
+// Parameters of one level: everything that depends on its dp; c0 is common to all levels.
+template <int D>
+SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0) {
+  SolverParams<D> prm;
+  prm.dp = dp;
+  prm.h = spec.h_over_dp * dp;
+  prm.eta2 = 0.01 * prm.h * prm.h;
+  prm.kernel = WendlandC2<D>(prm.h);
+  prm.mass = spec.density * std::pow(dp, D);
+  prm.gravity = to_vec<D>(spec.gravity);
+  const double g = norm(prm.gravity);
+  prm.up = g > 0.0 ? prm.gravity * (-1.0 / g) : Vec<D>{};
+  prm.eos = TaitEos(spec.density, spec.gamma, c0);
+  prm.inv_gamma = 1.0 / spec.gamma;
+  prm.rho0_g_over_b = spec.density * g / prm.eos.b;
+  if (spec.density_diffusion == DiffusionModel::fourtakas &&
+      prm.rho0_g_over_b * prm.kernel.support() > fourtakas_series_bound) {
+    throw std::invalid_argument(fmt::format(
+        "numerics.density_diffusion.model = \"fourtakas\": rho0 g 2h / B = {:.3g} exceeds {:g}: "
+        "the speed of sound {:.4g} m/s is too low for this resolution (raise eos.sound_speed)",
+        prm.rho0_g_over_b * prm.kernel.support(), fourtakas_series_bound, c0));
+  }
+  prm.viscosity = spec.viscosity;
+  prm.nu = spec.viscosity == ViscosityModel::laminar ? spec.kinematic_viscosity : 0.0;
+  prm.alpha_c0_h = spec.artificial_alpha * c0 * prm.h;
+  prm.diffusion = spec.density_diffusion;
+  prm.two_delta_h_c0 = 2.0 * spec.diffusion_delta * prm.h * c0;
+  prm.cfl = spec.cfl;
+  prm.sigma = spec.surface_tension;
+  prm.lambda_threshold = spec.lambda_threshold;
+  prm.normal_epsilon = spec.normal_epsilon;
+  prm.shifting = {spec.shifting, spec.shifting_coefficient, spec.shifting_surface_threshold,
+                  prm.h, dp};
+  prm.dt_min = 0.05 * prm.h / c0;
+  return prm;
+}
+
+// The particles of one level: the case filled at the level's dp (with its initial pressures
+// and hydrostatic density, computed on the whole fill so columns see the real free surface),
+// then cut to the level's region: fluid where it owns the fluid, buffer in its shells, walls
+// within 2h of either.
+template <int D>
+ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
+                               const SolverParams<D>& prm, std::uint64_t first_id) {
+  CaseSpec s = spec;
+  s.dp = lay.dp;
+  InitialSet<D> init = build_particles<D>(s);
+  ParticleSet<D>& all = init.particles;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (init.initial_pressure[i] != 0.0) all.rho[i] = prm.eos.density(init.initial_pressure[i]);
+  }
+  const double g = norm(prm.gravity);
+  if (spec.hydrostatic_initial_density && g > 0.0) {
+    apply_hydrostatic_density<D>(all, prm.gravity, spec.density, lay.dp, prm.eos);
+  }
+  ParticleSet<D> ps;
+  std::uint64_t id = first_id;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    Kind k = all.kind[i];
+    if (k == Kind::wall) {
+      if (!lay.region.covers(all.pos[i], prm.kernel.support())) continue;
+    } else {
+      const Zone z = lay.region.classify(all.pos[i]).zone;
+      if (z == Zone::outside) continue;
+      if (z == Zone::buffer) k = Kind::buffer;
+    }
+    ps.push_back(id++, k, all.pos[i], all.vel[i], all.rho[i], all.mass[i]);
+  }
+  return ps;
+}
+
+template void default_domain<2>(const ParticleSet<2>&, const Vec<2>&, double, Vec<2>&, Vec<2>&);
+template void default_domain<3>(const ParticleSet<3>&, const Vec<3>&, double, Vec<3>&, Vec<3>&);
+template SolverParams<2> level_params<2>(const CaseSpec&, double, double);
+template SolverParams<3> level_params<3>(const CaseSpec&, double, double);
+template ParticleSet<2> level_particles<2>(const CaseSpec&, const LevelLayout<2>&,
+                                           const SolverParams<2>&, std::uint64_t);
+template ParticleSet<3> level_particles<3>(const CaseSpec&, const LevelLayout<3>&,
+                                           const SolverParams<3>&, std::uint64_t);
+
+}  // namespace vrsph

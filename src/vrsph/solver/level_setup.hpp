@@ -1,0 +1,29 @@
+// Building the levels of a simulation from a validated case: the parameters that depend on a
+// level's dp, its particles (fluid, buffer and walls cut to the level's region) and the default
+// domain.
+#pragma once
+
+#include <cstdint>
+
+#include "vrsph/particles/particles.hpp"
+#include "vrsph/setup/case_spec.hpp"
+#include "vrsph/solver/params.hpp"
+#include "vrsph/vres/levels.hpp"
+
+namespace vrsph {
+
+// Default domain: bounding box of all particles grown by 10% of its size on each side (at least
+// 4h) and by a further 50% upwards against gravity, where splashes go.
+template <int D>
+void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>& lo, Vec<D>& hi);
+
+// Parameters of one level: everything that depends on its dp; c0 is common to all levels.
+template <int D>
+SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0);
+
+// The particles of one level, ids from first_id (see level_setup.cpp).
+template <int D>
+ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
+                               const SolverParams<D>& prm, std::uint64_t first_id);
+
+}  // namespace vrsph
