@@ -489,3 +489,20 @@ TEST(SurfaceTensionDroplet, InteriorPressureHeadsToLaplace) {
 
 }  // namespace
 }  // namespace vrsph
+
+namespace vrsph {
+namespace {
+
+// surface_offset: the curvature of a circle (sphere) of particle radius r referred to the free
+// surface dp/2 further out; kept finite for strongly concave values.
+TEST(SurfaceTensionOffset, CurvatureReferredToTheSurface) {
+  const double r = 1.95e-3, dp = 1e-4;
+  EXPECT_NEAR(curvature_at_surface<2>(1.0 / r, dp), 1.0 / (r + 0.5 * dp), 1e-9);
+  EXPECT_NEAR(curvature_at_surface<3>(2.0 / r, dp), 2.0 / (r + 0.5 * dp), 1e-9);
+  EXPECT_NEAR(curvature_at_surface<2>(-1.0 / r, dp), -1.0 / (r - 0.5 * dp), 1e-9);
+  EXPECT_DOUBLE_EQ(curvature_at_surface<2>(0.0, dp), 0.0);
+  EXPECT_NEAR(curvature_at_surface<2>(-1.0 / (0.4 * dp), dp), -2.0 / (0.4 * dp), 1e-6);
+}
+
+}  // namespace
+}  // namespace vrsph

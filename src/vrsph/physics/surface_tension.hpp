@@ -13,6 +13,7 @@
 // The functions below are the per-particle pieces; the passes are in solver/surface_pass.cpp.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "vrsph/core/mat.hpp"
@@ -50,6 +51,17 @@ constexpr double curvature_filter_cos() {
 inline double surface_delta(double grad_c_norm, double shepard) {
   const double phi = 1.0 / (2.0 * shepard);
   return 2.0 * std::max(1.0, phi) * grad_c_norm;
+}
+
+// Option `surface_offset` (not part of Cen et al. 2024): the free surface of a particle set lies
+// half a spacing outside the centres of its outer particles, where the curvature is measured.
+// Referring kappa to the surface, 1/r -> 1/(r + dp/2) for a circle and 2/r -> 2/(r + dp/2) for a
+// sphere: kappa_s = kappa / (1 + kappa dp / (2 (D - 1))) (denominator kept >= 1/2). Without it
+// the Laplace pressure carries a bias of about dp / (2R) that depends on the resolution, which
+// with variable resolution gives the levels different pressures.
+template <int D>
+inline double curvature_at_surface(double kappa, double dp) {
+  return kappa / std::max(0.5, 1.0 + kappa * dp / (2.0 * (D - 1)));
 }
 
 // CSF acceleration -sigma kappa n delta / rho.

@@ -28,7 +28,8 @@ constexpr std::string_view kNumericsKeys[] = {
 constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
 constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
-constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon"};
+constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon",
+                                                      "surface_offset"};
 constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",  "min",
                                                 "max",   "fill",   "velocity", "pressure"};
 constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
@@ -135,6 +136,7 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
   spec.lambda_threshold =
       st.opt_number("lambda_threshold", kUnitClosed).value_or(spec.lambda_threshold);
   spec.normal_epsilon = st.opt_number("normal_epsilon", kNonNegative).value_or(spec.normal_epsilon);
+  spec.surface_offset = st.opt_bool("surface_offset").value_or(spec.surface_offset);
   spec.hydrostatic_initial_density =
       r.opt_bool("hydrostatic_initial_density").value_or(spec.hydrostatic_initial_density);
 }

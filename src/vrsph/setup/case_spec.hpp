@@ -92,6 +92,7 @@ struct CaseSpec {
   double shifting_surface_threshold = 1.5;  // 2.75 in 3D by default
   double lambda_threshold = 0.7;
   double normal_epsilon = 0.1;
+  bool surface_offset = false;  // curvature referred to the free surface dp/2 outside (not Cen)
   bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
 
   // geometry

@@ -89,8 +89,10 @@ void write_numerics(Writer& w, const CaseSpec& s) {
   w.kv("shifting", fmt::format("{{ model = {}, coefficient = {}, surface_threshold = {} }}",
                                toml_quote(enum_name(kShiftingNames, s.shifting)),
                                num(s.shifting_coefficient), num(s.shifting_surface_threshold)));
-  w.kv("surface_tension", fmt::format("{{ lambda_threshold = {}, normal_epsilon = {} }}",
-                                      num(s.lambda_threshold), num(s.normal_epsilon)));
+  w.kv("surface_tension",
+       fmt::format("{{ lambda_threshold = {}, normal_epsilon = {}, surface_offset = {} }}",
+                   num(s.lambda_threshold), num(s.normal_epsilon),
+                   s.surface_offset ? "true" : "false"));
   w.kv("hydrostatic_initial_density", s.hydrostatic_initial_density ? "true" : "false");
 }
 

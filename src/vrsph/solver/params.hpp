@@ -34,6 +34,7 @@ struct SolverParams {
   double sigma = 0.0;     // surface tension coefficient
   double lambda_threshold = 0.7;  // surface-tension normal: difference form above this lambda
   double normal_epsilon = 0.1;    // surface-tension normal: |grad lambda| > eps lambda / h
+  bool surface_offset = false;    // curvature_at_surface() in the CSF force
   ShiftingParams shifting;
   double dt_min = 0.0;    // 0.05 h / c0 (DualSPHysics CoefDtMin): below this the run is unstable
 

@@ -202,7 +202,8 @@ void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& p
     });
     sf.curvature[i] = kappa;
     const double delta = surface_delta(norm(sf.grad_c[i]), sf.shepard[i]);
-    sf.acc_st[i] = csf_acceleration<D>(prm.sigma, kappa, n_i, delta, ps.rho[i]);
+    const double k_force = prm.surface_offset ? curvature_at_surface<D>(kappa, prm.dp) : kappa;
+    sf.acc_st[i] = csf_acceleration<D>(prm.sigma, k_force, n_i, delta, ps.rho[i]);
   }
 }
 
