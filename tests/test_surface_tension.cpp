@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "case_util.hpp"
+#include "vrsph/physics/surface_tension.hpp"
 #include "vrsph/core/kernel.hpp"
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
