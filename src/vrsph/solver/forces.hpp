@@ -5,6 +5,7 @@
 // count. Model choices are template parameters resolved once per call (forces.cpp).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -19,6 +20,13 @@ struct ForceStats {
   double max_visc_dt = -1e300;  // max over pairs of v_ij . r_ij / (r^2 + eta^2)
   double max_acc = 0.0;         // max |a| over fluid particles (gravity excluded)
   std::uint64_t pairs = 0;      // pairs within 2h evaluated (i != j)
+
+  // Combines the statistics of another pass (another stage or level): maxima and the pair sum.
+  void merge(const ForceStats& o) {
+    max_visc_dt = std::max(max_visc_dt, o.max_visc_dt);
+    max_acc = std::max(max_acc, o.max_acc);
+    pairs += o.pairs;
+  }
 };
 
 // Neighbour data packed as separate contiguous arrays (structure of arrays) so the inner loop

@@ -277,11 +277,7 @@ ForceStats Simulation<D>::evaluate_forces() {
   const bool st = levels_[0].prm.sigma > 0.0;
   ForceStats s;
   for (Level<D>& L : levels_) {
-    const ForceStats a =
-        compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr);
-    s.max_acc = std::max(s.max_acc, a.max_acc);
-    s.max_visc_dt = std::max(s.max_visc_dt, a.max_visc_dt);
-    s.pairs += a.pairs;
+    s.merge(compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr));
   }
   times_.forces += now_seconds() - t0;
   return s;
@@ -325,18 +321,12 @@ void Simulation<D>::step() {
   double dt = dt_next_;
   const bool lands = stop_time_ > t_ && t_ + dt >= stop_time_;
   if (lands) dt = stop_time_ - t_;
-  ForceStats s;
-  auto merge = [&](const ForceStats& a) {
-    s.max_acc = std::max(s.max_acc, a.max_acc);
-    s.max_visc_dt = std::max(s.max_visc_dt, a.max_visc_dt);
-    s.pairs += a.pairs;
-  };
-  merge(evaluate_forces());
+  ForceStats s = evaluate_forces();
   double t0 = now_seconds();
   for (Level<D>& L : levels_) predictor(L, dt);
   times_.update += now_seconds() - t0;
   sort_all();
-  merge(evaluate_forces());
+  s.merge(evaluate_forces());
   t0 = now_seconds();
   for (Level<D>& L : levels_) corrector(L, dt);
   times_.update += now_seconds() - t0;

@@ -5,7 +5,6 @@
 namespace vrsph {
 namespace {
 
-constexpr double kMinShepard = 0.05;  // below: no donor fluid around the point
 constexpr double kMinSpacing = 0.5;   // x dp: no particle is created closer than this to another
 
 // Mass the donor flow carries across a face element in dt: -rho (u . n) dA dt (n out of the
@@ -62,7 +61,7 @@ void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64
       // or a donor particle closer than the finer spacing (thin layers, such as a surge front,
       // never reach the free-surface threshold but still carry mass across).
       const double close = std::min(L.prm.dp, levels[static_cast<std::size_t>(P.donor)].prm.dp);
-      if (s.shepard < kMinShepard) continue;
+      if (s.shepard < kVresShepardMin) continue;
       if (s.div_r + s.div_r_walls < threshold && s.nearest >= close) continue;
       P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), P.area, dt);
       if (P.mass < m) continue;
@@ -114,7 +113,7 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& ta
       const Level<D>& donor = levels[static_cast<std::size_t>(z.donor)];
       const InterpolatedState<D> s =
           interpolate_from_level<D>(ps.pos[i], donor.ps, donor.grid, donor.prm.kernel);
-      if (s.shepard < kMinShepard) {
+      if (s.shepard < kVresShepardMin) {
         keep[i] = 0;
         ++removed;
         continue;
