@@ -230,3 +230,22 @@ TEST(VresDamBreak, FrontFollowsSingleResolution) {
 
 }  // namespace
 }  // namespace vrsph
+
+namespace vrsph {
+namespace {
+
+// With dp_ratio 4 the global dt, set by the fine level (0.2 h_fine / c0), is at or just below
+// 0.05 h_coarse / c0: the collapsed-dt check must use the finest level's bound, not fire on the
+// coarse level's.
+TEST(VresTimeStep, FineLevelDtIsNotAnInstability) {
+  CaseSpec spec = load_case("droplet_vr_2d.toml", {"resolution.dp=2e-4", "case.end_time=0.0005",
+                                                   "refinement.0.dp_ratio=4"});
+  Simulation<2> sim(spec);
+  ASSERT_EQ(sim.level_count(), 2u);
+  EXPECT_LE(sim.dt_next(), sim.level(0).prm.dt_min * (1 + 1e-12));
+  EXPECT_NO_THROW(while (sim.time() < spec.end_time - 1e-12) sim.step());
+  EXPECT_GT(sim.step_count(), 100);
+}
+
+}  // namespace
+}  // namespace vrsph

@@ -17,6 +17,14 @@
 namespace vrsph {
 namespace {
 
+// "(x, y[, z])" with 6 significant digits, for diagnoses.
+template <int D>
+std::string position_text(const Vec<D>& x) {
+  std::string s = fmt::format("({:.6g}", x[0]);
+  for (int k = 1; k < D; ++k) s += fmt::format(", {:.6g}", x[k]);
+  return s + ")";
+}
+
 double now_seconds() {
   using clock = std::chrono::steady_clock;
   return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
@@ -342,11 +350,11 @@ void Simulation<D>::step() {
   dt_next_ = c.dt;
   ++counters_.dt_limit_counts[static_cast<std::size_t>(c.limit)];
   for (const Level<D>& L : levels_) check_state(L);
+  check_dt();
   times_.checks += now_seconds() - t0;
 }
 
-// Stops the run with a diagnosis: non-finite values, fluid density outside [0.5, 2] rho0, or a
-// time step collapsed below 0.05 h / c0.
+// Stops the run with a diagnosis: non-finite values, or fluid density outside [0.5, 2] rho0.
 template <int D>
 void Simulation<D>::check_state(const Level<D>& L) const {
   const ParticleSet<D>& ps = L.ps;
@@ -367,39 +375,40 @@ void Simulation<D>::check_state(const Level<D>& L) const {
   }
   if (first < n) {
     const auto i = static_cast<std::size_t>(first);
-    const auto& x = ps.pos[i];
     const bool is_finite = finite(i);
-    std::string where = fmt::format("({:.6g}", x[0]);
-    for (int k = 1; k < D; ++k) where += fmt::format(", {:.6g}", x[k]);
-    where += ")";
     throw InstabilityError(fmt::format(
         "unstable at t = {:.6g} s, step {}: {} particle id {} at {} {} (check: {})", t_, step_,
-        kind_name(ps.kind[i]), ps.id[i], where,
+        kind_name(ps.kind[i]), ps.id[i], position_text<D>(ps.pos[i]),
         is_finite ? fmt::format("has density {:.6g} kg/m^3 outside [{:.6g}, {:.6g}]", ps.rho[i],
                                 0.5 * rho0, 2.0 * rho0)
                   : std::string("has a non-finite position, velocity or density"),
         is_finite ? "density" : "finite"));
   }
-  if (dt_next_ < L.prm.dt_min) {
-    // Name the particle with the largest acceleration over all levels: where to look.
-    std::string culprit = "the fastest particles or largest accelerations";
-    double amax = -1.0;
-    for (std::size_t l = 0; l < levels_.size(); ++l) {
-      const ParticleSet<D>& q = levels_[l].ps;
-      for (std::size_t i = 0; i < q.size(); ++i) {
-        if (q.kind[i] != Kind::fluid || norm(q.acc[i]) <= amax) continue;
-        amax = norm(q.acc[i]);
-        std::string where = fmt::format("({:.6g}", q.pos[i][0]);
-        for (int k = 1; k < D; ++k) where += fmt::format(", {:.6g}", q.pos[i][k]);
-        culprit = fmt::format("largest acceleration {:.3g} m/s^2 at fluid particle id {} of level {} at {})",
-                              amax, q.id[i], l, where);
-      }
+}
+
+// Stops the run when the global dt collapsed below 0.05 h / c0 of the finest level (the level
+// that sets dt; a coarser level's bound would fire on a legitimate fine-level step), naming the
+// fluid particle with the largest acceleration over all levels: where to look.
+template <int D>
+void Simulation<D>::check_dt() const {
+  double dt_min = 1e300;
+  for (const Level<D>& L : levels_) dt_min = std::min(dt_min, L.prm.dt_min);
+  if (dt_next_ >= dt_min) return;
+  std::string culprit = "the fastest particles or largest accelerations";
+  double amax = -1.0;
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const ParticleSet<D>& q = levels_[l].ps;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      if (q.kind[i] != Kind::fluid || norm(q.acc[i]) <= amax) continue;
+      amax = norm(q.acc[i]);
+      culprit = fmt::format("largest acceleration {:.3g} m/s^2 at fluid particle id {} of level {} at {}",
+                            amax, q.id[i], l, position_text<D>(q.pos[i]));
     }
-    throw InstabilityError(fmt::format(
-        "unstable at t = {:.6g} s, step {}: time step {:.3g} s fell below 0.05 h/c0 = {:.3g} s "
-        "(check: dt; {})",
-        t_, step_, dt_next_, L.prm.dt_min, culprit));
   }
+  throw InstabilityError(fmt::format(
+      "unstable at t = {:.6g} s, step {}: time step {:.3g} s fell below 0.05 h/c0 = {:.3g} s "
+      "(check: dt; {})",
+      t_, step_, dt_next_, dt_min, culprit));
 }
 
 template <int D>

@@ -114,6 +114,7 @@ class Simulation {
   void predictor(Level<D>& L, double dt);
   void corrector(Level<D>& L, double dt);
   void check_state(const Level<D>& L) const;
+  void check_dt() const;
   ForceStats evaluate_forces();
   void surface_fields_all();
   void exchange_buffer_lambda();
