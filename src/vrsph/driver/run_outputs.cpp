@@ -31,8 +31,9 @@ std::vector<ExtraField> surface_extras(Simulation<D>& sim) {
   ExtraField normal{"normal", D, {}};
   ExtraField curvature{"curvature", 1, {}};
   ExtraField shift{"shift", D, {}};
+  sim.update_surface_fields();
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
-    const SurfaceFields<D>& sf = sim.surface_fields_now(l);
+    const SurfaceFields<D>& sf = sim.surface_fields(l);
     const auto& ps = sim.level(l).ps;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       lambda.values.push_back(sf.lambda[i]);

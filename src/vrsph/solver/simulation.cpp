@@ -242,10 +242,9 @@ DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
 // other level (exchange_buffer_lambda) before the normals and curvature (passes 2 and 3) use it.
 template <int D>
 void Simulation<D>::surface_fields_all() {
+  if (!has_surface_fields()) return;
   const double t0 = now_seconds();
-  const SolverParams<D>& prm = levels_[0].prm;
-  const bool st = prm.sigma > 0.0;
-  if (!st && prm.shifting.model == ShiftingModel::none) return;
+  const bool st = levels_[0].prm.sigma > 0.0;
   for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.sf);
   if (st) {
     if (levels_.size() > 1) exchange_buffer_lambda();
@@ -292,19 +291,14 @@ ForceStats Simulation<D>::evaluate_forces() {
 }
 
 template <int D>
-const SurfaceFields<D>& Simulation<D>::surface_fields_now(std::size_t k) {
-  if (k == 0) {  // all levels at once (lambda exchange); later levels reuse the result
-    const double keep = times_.surface;
-    SolverParams<D>& p0 = levels_[0].prm;
-    const bool none = p0.sigma <= 0.0 && p0.shifting.model == ShiftingModel::none;
-    if (none) {
-      for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.sf);
-    } else {
-      surface_fields_all();
-    }
-    times_.surface = keep;
+void Simulation<D>::update_surface_fields() {
+  const double keep = times_.surface;  // output work, not stepping time
+  if (has_surface_fields()) {
+    surface_fields_all();
+  } else {
+    for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.sf);
   }
-  return levels_[k].sf;
+  times_.surface = keep;
 }
 
 // Variable resolution after a step (PHYSICS.md section 5): mass points, kind changes and

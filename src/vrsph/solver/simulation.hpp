@@ -101,9 +101,10 @@ class Simulation {
   // Pressure of every particle from its current density (outputs).
   void update_pressure();
 
-  // lambda, normals, curvature, ... of level k in the current state (outputs); recomputed on
-  // each call.
-  const SurfaceFields<D>& surface_fields_now(std::size_t k = 0);
+  // Recomputes lambda, normals, curvature, ... of every level for the current state (outputs);
+  // surface_fields(k) then reads level k.
+  void update_surface_fields();
+  const SurfaceFields<D>& surface_fields(std::size_t k = 0) const { return levels_[k].sf; }
   bool has_surface_fields() const {
     return params().sigma > 0.0 || params().shifting.model != ShiftingModel::none;
   }
