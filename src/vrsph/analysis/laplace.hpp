@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <span>
 
+#include "vrsph/output/line_profile.hpp"
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/setup/case_spec.hpp"
 
@@ -29,6 +30,12 @@ LaplaceError laplace_error(std::span<const double> s, std::span<const double> p,
 // line's ends may lie in different levels).
 LaplaceError laplace_error(std::span<const double> s, std::span<const double> p, double expected,
                            double h_first, double h_last);
+
+// The same for line samples (sorted by s, as sample_line gives them), with the 2h margin taken
+// with h_first at the start and h_last at the end.
+template <int D>
+LaplaceError laplace_error(std::span<const LineSample<D>> samples, double expected, double h_first,
+                           double h_last);
 
 // The same for the particles of one level along an [[output.line]] (within dp/2 of it, as the
 // line profile files); ps.p must be current.

@@ -209,15 +209,10 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
   if (spec_.laplace_pressure && !spec_.lines.empty()) {
     const OutputLine& line = spec_.lines.front();
     const auto samples = sample_levels(sim, line);
-    std::vector<double> s, p;
-    for (const auto& q : samples) {
-      s.push_back(q.s);
-      p.push_back(q.p);
-    }
     // 2h of the level at each end of the line
     const double h_first = samples.empty() ? 0.0 : sim.level(samples.front().level).prm.h;
     const double h_last = samples.empty() ? 0.0 : sim.level(samples.back().level).prm.h;
-    const LaplaceError e = laplace_error(s, p, *spec_.laplace_pressure, h_first, h_last);
+    const LaplaceError e = laplace_error<D>(samples, *spec_.laplace_pressure, h_first, h_last);
     j["laplace"] = {{"expected", e.expected}, {"mean_interior", e.mean_interior},
                     {"rmse", e.rmse},         {"nrmse", e.nrmse},
                     {"rmse_all", e.rmse_all}, {"n_points", e.n_points},
