@@ -76,11 +76,16 @@ SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0) {
 // then cut to the level's region: fluid where it owns the fluid, buffer in its shells, walls
 // within 2h of either.
 template <int D>
-ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
-                               const SolverParams<D>& prm, std::uint64_t first_id) {
+InitialSet<D> level_fill(const CaseSpec& spec, double dp) {
   CaseSpec s = spec;
-  s.dp = lay.dp;
-  InitialSet<D> init = build_particles<D>(s);
+  s.dp = dp;
+  return build_particles<D>(s);
+}
+
+template <int D>
+ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
+                               const SolverParams<D>& prm, std::uint64_t first_id,
+                               InitialSet<D> init) {
   ParticleSet<D>& all = init.particles;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (init.initial_pressure[i] != 0.0) all.rho[i] = prm.eos.density(init.initial_pressure[i]);
@@ -109,9 +114,11 @@ template void default_domain<2>(const ParticleSet<2>&, const Vec<2>&, double, Ve
 template void default_domain<3>(const ParticleSet<3>&, const Vec<3>&, double, Vec<3>&, Vec<3>&);
 template SolverParams<2> level_params<2>(const CaseSpec&, double, double);
 template SolverParams<3> level_params<3>(const CaseSpec&, double, double);
+template InitialSet<2> level_fill<2>(const CaseSpec&, double);
+template InitialSet<3> level_fill<3>(const CaseSpec&, double);
 template ParticleSet<2> level_particles<2>(const CaseSpec&, const LevelLayout<2>&,
-                                           const SolverParams<2>&, std::uint64_t);
+                                           const SolverParams<2>&, std::uint64_t, InitialSet<2>);
 template ParticleSet<3> level_particles<3>(const CaseSpec&, const LevelLayout<3>&,
-                                           const SolverParams<3>&, std::uint64_t);
+                                           const SolverParams<3>&, std::uint64_t, InitialSet<3>);
 
 }  // namespace vrsph

@@ -7,6 +7,7 @@
 
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/setup/case_spec.hpp"
+#include "vrsph/setup/geometry.hpp"
 #include "vrsph/solver/params.hpp"
 #include "vrsph/vres/levels.hpp"
 
@@ -21,9 +22,15 @@ void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>
 template <int D>
 SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0);
 
-// The particles of one level, ids from first_id (see level_setup.cpp).
+// The case filled at spacing dp (every block and wall, the whole domain).
+template <int D>
+InitialSet<D> level_fill(const CaseSpec& spec, double dp);
+
+// The particles of one level from its fill (level_fill at the level's dp), ids from first_id
+// (see level_setup.cpp).
 template <int D>
 ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
-                               const SolverParams<D>& prm, std::uint64_t first_id);
+                               const SolverParams<D>& prm, std::uint64_t first_id,
+                               InitialSet<D> fill);
 
 }  // namespace vrsph

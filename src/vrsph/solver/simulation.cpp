@@ -39,10 +39,9 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
 
   // Speed of sound (common to all levels): given, or sound_speed_factor x max_speed, with
   // max_speed = sqrt(g H) for gravity cases when not given (PHYSICS.md section 2). H and initial
-  // velocities come from the level-0 fill.
+  // velocities come from the level-0 fill, which level 0 then takes its particles from.
+  InitialSet<D> init0 = level_fill<D>(spec, spec.dp);
   {
-    CaseSpec s0 = spec;
-    InitialSet<D> init0 = build_particles<D>(s0);
     setup_.fluid_height = init0.fluid_height;
     const double g = norm(to_vec<D>(spec.gravity));
     if (!spec.max_speed) {
@@ -68,7 +67,8 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
     Level<D>& L = levels_[k];
     L.prm = level_params<D>(spec, layout[k].dp, setup_.c0);
     L.region = layout[k].region;
-    L.ps = level_particles<D>(spec, layout[k], L.prm, next_id);
+    L.ps = level_particles<D>(spec, layout[k], L.prm, next_id,
+                              k == 0 ? std::move(init0) : level_fill<D>(spec, layout[k].dp));
     next_id += L.ps.size();
     L.mass_points = level_mass_points<D>(L.region, L.prm.dp);
   }

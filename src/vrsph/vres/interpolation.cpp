@@ -1,6 +1,5 @@
 #include "vrsph/vres/interpolation.hpp"
 
-#include <stdexcept>
 
 namespace vrsph {
 namespace {
