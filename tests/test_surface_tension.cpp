@@ -227,6 +227,18 @@ void impose_radial_normals(Static<D>& s, double rim) {
   }
 }
 
+// The curvature pass on a static set with exact radial normals on its outer three rows
+// (|x| > R - 3 dp, so the outer row's whole support inwards carries normals and the filter S_ij
+// cuts none of its neighbours).
+template <int D>
+Static<D> curvature_with_radial_normals(const std::vector<Vec<D>>& pos, double R, double dp) {
+  Static<D> s = make_static<D>(pos, dp);
+  surface_sums(s.prm, s.ps, s.grid, s.sf);
+  impose_radial_normals(s, R - 3.0 * dp);
+  surface_curvature_force(s.prm, s.ps, s.grid, s.sf);
+  return s;
+}
+
 // Mean, min and max curvature over the particles with r_lo < |x| <= r_hi.
 struct LayerStats {
   double mean = 0.0, min = 1e300, max = -1e300;
@@ -259,12 +271,8 @@ TEST(SurfaceTensionCurvature, RadialNormalsOnRingsGiveOneOverR) {
   double err_ring[2] = {0.0, 0.0};
   int level = 0;
   for (double dp : {1e-4, 5e-5}) {
-    Static<2> s = make_static<2>(droplet_circle(dp, "rings"), dp);
-    surface_sums(s.prm, s.ps, s.grid, s.sf);
-    // Three rings (R - dp/2, R - 3dp/2, R - 5dp/2) carry normals: the outer ring's full
-    // support (2.6 dp) inwards, so the filter S_ij cuts none of its neighbours.
-    impose_radial_normals(s, R - 3.0 * dp);
-    surface_curvature_force(s.prm, s.ps, s.grid, s.sf);
+    // Three rings (R - dp/2, R - 3dp/2, R - 5dp/2) carry normals.
+    const Static<2> s = curvature_with_radial_normals<2>(droplet_circle(dp, "rings"), R, dp);
     const LayerStats outer = layer_curvature(s, R - dp, R);
     const LayerStats second = layer_curvature(s, R - 2.0 * dp, R - dp);
     const double r_ring = R - 0.5 * dp;
@@ -290,10 +298,7 @@ TEST(SurfaceTensionCurvature, RadialNormalsOnRingsGiveOneOverR) {
 // Sphere on concentric shells (Fibonacci points, built here): kappa = 2/R on the outer shell.
 TEST(SurfaceTensionCurvature, RadialNormalsOnSphereShellsGiveTwoOverR) {
   const double R = 0.002, dp = 1e-4;
-  Static<3> s = make_static<3>(sphere_shells(R, dp), dp);
-  surface_sums(s.prm, s.ps, s.grid, s.sf);
-  impose_radial_normals(s, R - 3.0 * dp);
-  surface_curvature_force(s.prm, s.ps, s.grid, s.sf);
+  const Static<3> s = curvature_with_radial_normals<3>(sphere_shells(R, dp), R, dp);
   const LayerStats outer = layer_curvature(s, R - dp, R);
   std::printf("[ surface 3D shells dp=%g ] imposed radial normals: outer shell kappa R / 2 = "
               "%.4f (%.3f..%.3f, %zu particles)\n",
@@ -308,10 +313,7 @@ TEST(SurfaceTensionCurvature, RadialNormalsOnSphereShellsGiveTwoOverR) {
 
   // The same on a sphere cut from the lattice (outer-shell average, printed and bounded loosely:
   // the jagged surface spreads the per-particle values).
-  Static<3> l = make_static<3>(sphere_lattice(R, dp), dp);
-  surface_sums(l.prm, l.ps, l.grid, l.sf);
-  impose_radial_normals(l, R - 3.0 * dp);
-  surface_curvature_force(l.prm, l.ps, l.grid, l.sf);
+  const Static<3> l = curvature_with_radial_normals<3>(sphere_lattice(R, dp), R, dp);
   const LayerStats lo = layer_curvature(l, R - dp, R);
   std::printf("[ surface 3D lattice sphere dp=%g ] imposed radial normals: outer shell "
               "kappa R / 2 = %.4f (%.3f..%.3f, %zu particles)\n",
