@@ -118,7 +118,8 @@ class Simulation {
   void check_dt() const;
   ForceStats evaluate_forces();
   void surface_fields_all();
-  void exchange_buffer_lambda();
+  template <class T>
+  void exchange_buffer_surface_field(std::vector<T> SurfaceFields<D>::*field, double reach_h);
   DtChoice next_dt(const ForceStats& s) const;
   void couple_levels(double dt);
 

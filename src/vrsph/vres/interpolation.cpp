@@ -91,13 +91,13 @@ InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D
   return interpolate_at(x, donors, grid, kernel, cond_limit);
 }
 
-template <int D>
-double shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGrid<D>& grid,
-                     const WendlandC2<D>& kernel, const std::vector<double>& field,
-                     double fallback) {
+template <int D, class T>
+T shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGrid<D>& grid,
+                const WendlandC2<D>& kernel, const std::vector<T>& field, T fallback) {
   std::int64_t c = 0;
   if (donors.size() == 0 || !grid.stencil_cell(x, c)) return fallback;
-  double sw = 0.0, sfw = 0.0;
+  double sw = 0.0;
+  T sfw{};
   grid.for_each_run(c, Group::fluid, [&](std::uint32_t begin, std::uint32_t end) {
     for (std::uint32_t j = begin; j < end; ++j) {
       if (donors.kind[j] != Kind::fluid) continue;
@@ -105,10 +105,10 @@ double shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGr
       if (r2 >= kernel.support2) continue;
       const double vw = donors.mass[j] / donors.rho[j] * kernel.w(std::sqrt(r2));
       sw += vw;
-      sfw += vw * field[j];
+      sfw += field[j] * vw;
     }
   });
-  return sw >= kVresShepardMin ? sfw / sw : fallback;
+  return sw >= kVresShepardMin ? sfw * (1.0 / sw) : fallback;
 }
 
 template <int D>
@@ -136,9 +136,13 @@ template void interpolate_from_level(const std::vector<Vec<3>>&, const ParticleS
                                      const CellGrid<3>&, const WendlandC2<3>&,
                                      std::vector<InterpolatedState<3>>&, double);
 
-template double shepard_field<2>(const Vec<2>&, const ParticleSet<2>&, const CellGrid<2>&,
-                                 const WendlandC2<2>&, const std::vector<double>&, double);
-template double shepard_field<3>(const Vec<3>&, const ParticleSet<3>&, const CellGrid<3>&,
-                                 const WendlandC2<3>&, const std::vector<double>&, double);
+template double shepard_field<2, double>(const Vec<2>&, const ParticleSet<2>&, const CellGrid<2>&,
+                                         const WendlandC2<2>&, const std::vector<double>&, double);
+template double shepard_field<3, double>(const Vec<3>&, const ParticleSet<3>&, const CellGrid<3>&,
+                                         const WendlandC2<3>&, const std::vector<double>&, double);
+template Vec<2> shepard_field<2, Vec<2>>(const Vec<2>&, const ParticleSet<2>&, const CellGrid<2>&,
+                                         const WendlandC2<2>&, const std::vector<Vec<2>>&, Vec<2>);
+template Vec<3> shepard_field<3, Vec<3>>(const Vec<3>&, const ParticleSet<3>&, const CellGrid<3>&,
+                                         const WendlandC2<3>&, const std::vector<Vec<3>>&, Vec<3>);
 
 }  // namespace vrsph

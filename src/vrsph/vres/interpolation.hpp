@@ -82,12 +82,12 @@ void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet
 
 // Shepard average of a per-particle field of the donor level's fluid at x:
 // sum_j V_j f_j W / sum_j V_j W over Kind::fluid donors; `fallback` where the donor support is
-// below kVresShepardMin. Used to give buffer particles the surface-tension quantities (lambda) of
-// the other level, which has full support where the buffer's own level sees a false free surface.
-template <int D>
-double shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGrid<D>& grid,
-                     const WendlandC2<D>& kernel, const std::vector<double>& field,
-                     double fallback);
+// below kVresShepardMin. T is double or Vec<D>. Used to give buffer particles the surface-tension
+// quantities (lambda, normals) of the other level where their own support reaches beyond the
+// buffer shell and would see a free surface that is not there.
+template <int D, class T>
+T shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGrid<D>& grid,
+                const WendlandC2<D>& kernel, const std::vector<T>& field, T fallback);
 
 // Small dense N x N LU factorisation with partial pivoting (Golub & Van Loan, algorithm 3.4.1):
 // P A = L U with L unit lower triangular, both stored in lu. A pivot below 1e-14 ||A||inf marks

@@ -50,6 +50,21 @@ struct Box {
       if (o.hi[k] < lo[k] || o.lo[k] > hi[k]) return false;
     return true;
   }
+  // Distance from x (outside) to the box, 0 inside.
+  double distance_outside(const Vec<D>& x) const {
+    double d2 = 0.0;
+    for (int k = 0; k < D; ++k) {
+      const double e = std::max({lo[k] - x[k], x[k] - hi[k], 0.0});
+      d2 += e * e;
+    }
+    return std::sqrt(d2);
+  }
+  // Distance from x (inside) to the box's boundary, 0 outside.
+  double distance_inside(const Vec<D>& x) const {
+    double d = 1e300;
+    for (int k = 0; k < D; ++k) d = std::min({d, x[k] - lo[k], hi[k] - x[k]});
+    return std::max(d, 0.0);
+  }
   // Unit outward normal of the face nearest to x (inside or outside the box).
   Vec<D> nearest_face_normal(const Vec<D>& x) const {
     int best_k = 0;
@@ -73,6 +88,9 @@ struct ZoneInfo {
   int donor = -1;      // buffer: level whose fluid supplies rho and v
   Vec<D> face_normal{};  // buffer: unit normal of the nearest interface face (shifting keeps
                          // only the tangential part)
+  double depth = 0.0;    // buffer: distance from the level's fluid region into the shell; the
+                         // kernel support (2h) lies inside fluid and shell while depth <= width - 2h
+  double width = 0.0;    // buffer: the shell's thickness
 };
 
 // One point on the outer face of a buffer (the face away from its level's fluid) where the mass
@@ -107,6 +125,8 @@ struct LevelRegion {
       z.zone = box.grown(width).contains(x) ? Zone::buffer : Zone::outside;
       z.donor = parent;
       z.face_normal = box.nearest_face_normal(x);
+      z.depth = box.distance_outside(x);
+      z.width = width;
       return z;
     }
     for (const Child& c : children) {
@@ -114,6 +134,8 @@ struct LevelRegion {
       z.zone = c.box.grown(-c.width).contains(x) ? Zone::outside : Zone::buffer;
       z.donor = c.level;
       z.face_normal = c.box.nearest_face_normal(x);
+      z.depth = c.box.distance_inside(x);
+      z.width = c.width;
       return z;
     }
     return z;
