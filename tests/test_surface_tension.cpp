@@ -321,6 +321,39 @@ TEST(SurfaceTensionCurvature, RadialNormalsOnSphereShellsGiveTwoOverR) {
   EXPECT_NEAR(0.5 * lo.mean * R, 1.0, 0.1);
 }
 
+// curvature_correction (not part of Cen et al.): the same imposed radial normals, now with the
+// stencil-consistent curvature. The one-sided first-order bias above (kappa r_ring 1.013-1.028)
+// and the truncated set of the inner rows (whose deeper neighbours carry no normal) both go: each
+// ring measures its own 1/r (2/r on sphere shells).
+TEST(SurfaceTensionCurvature, CorrectedCurvatureGivesEachRingItsRadius) {
+  const double R = 0.002;
+  for (double dp : {1e-4, 5e-5}) {
+    Static<2> s = make_static<2>(droplet_circle(dp, "rings"), dp);
+    s.prm.curvature_correction = true;
+    surface_sums(s.prm, s.ps, s.grid, s.sf);
+    impose_radial_normals(s, R - 3.0 * dp);
+    surface_curvature_force(s.prm, s.ps, s.grid, s.sf);
+    for (int ring = 0; ring < 3; ++ring) {
+      const double r_ring = R - (ring + 0.5) * dp;
+      const LayerStats st = layer_curvature(s, r_ring - 0.5 * dp, r_ring + 0.5 * dp);
+      std::printf("[ surface 2D rings dp=%g ] corrected curvature, ring %d: kappa r = %.5f "
+                  "(%.5f..%.5f)\n", dp, ring, st.mean * r_ring, st.min * r_ring, st.max * r_ring);
+      ASSERT_GT(st.n, 100u);
+      EXPECT_NEAR(st.mean * r_ring, 1.0, 0.002) << "dp " << dp << " ring " << ring;
+    }
+  }
+  const double dp = 1e-4;
+  Static<3> s = make_static<3>(sphere_shells(R, dp), dp);
+  s.prm.curvature_correction = true;
+  surface_sums(s.prm, s.ps, s.grid, s.sf);
+  impose_radial_normals(s, R - 3.0 * dp);
+  surface_curvature_force(s.prm, s.ps, s.grid, s.sf);
+  const LayerStats outer = layer_curvature(s, R - dp, R);
+  std::printf("[ surface 3D shells dp=%g ] corrected curvature, outer shell: kappa r / 2 = %.5f\n",
+              dp, 0.5 * outer.mean * (R - 0.5 * dp));
+  EXPECT_NEAR(0.5 * outer.mean * (R - 0.5 * dp), 1.0, 0.005);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 4. Full model on a static circle: integrated inward force against the Laplace jump.
 

@@ -64,6 +64,40 @@ inline double curvature_at_surface(double kappa, double dp) {
   return kappa / std::max(0.5, 1.0 + kappa * dp / (2.0 * (D - 1)));
 }
 
+// Option `curvature_correction` (not part of Cen et al. 2024): the curvature sum of step 3,
+// kappa_i = sum_j S_ij V_j (n_j - n_i) . G_ij with G_ij = L_i grad_i W_ij, runs only over the
+// neighbours with a normal, a one-sided and truncated set near a free surface. Taylor-expanding
+// the normal field of a locally spherical surface (n = x / r, principal curvature u = 1/r) about
+// particle i, with d_j = r_j - r_i and e = n_i:
+//   kappa_i = a_i u + b_i u^2 + O(d^3 u^3),
+//   a_i = sum_j V_j (d_j . G_ij - (d_j . e)(e . G_ij))    (D - 1 for a complete stencil),
+//   b_i = sum_j V_j ((3/2)(d_j . e)^2 (e . G_ij) - (d_j . e)(d_j . G_ij) - |d_j|^2 (e . G_ij) / 2)
+//        (0 for a symmetric stencil).
+// The corrected curvature is (D - 1) u from the root u = 2 kappa / (a + sqrt(a^2 + 4 b kappa)),
+// kept uncorrected where a < (D - 1)/4 (too few neighbours with normals) or the root is complex.
+// On a static circle of rings (dp = 5e-5, R = 2 mm) the outer ring's kappa r goes from 1.0068 to
+// 1.0000 and the second ring's from 0.779 to 1.000.
+struct CurvatureSums {
+  double kappa = 0.0, a = 0.0, b = 0.0;
+};
+
+template <int D>
+inline void add_curvature_pair(CurvatureSums& s, double v_j, const Vec<D>& n_i, const Vec<D>& n_j,
+                               const Vec<D>& d_j, const Vec<D>& g_ij) {
+  s.kappa += v_j * dot(n_j - n_i, g_ij);
+  const double de = dot(d_j, n_i), dg = dot(d_j, g_ij), eg = dot(n_i, g_ij);
+  s.a += v_j * (dg - de * eg);
+  s.b += v_j * (1.5 * de * de * eg - de * dg - 0.5 * norm2(d_j) * eg);
+}
+
+template <int D>
+inline double corrected_curvature(const CurvatureSums& s) {
+  constexpr double dm1 = D - 1;
+  const double disc = s.a * s.a + 4.0 * s.b * s.kappa;
+  if (!(s.a > 0.25 * dm1) || !(disc >= 0.0)) return s.kappa;
+  return dm1 * 2.0 * s.kappa / (s.a + std::sqrt(disc));
+}
+
 // CSF acceleration -sigma kappa n delta / rho.
 template <int D>
 inline Vec<D> csf_acceleration(double sigma, double kappa, const Vec<D>& n, double delta,

@@ -29,7 +29,7 @@ constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
 constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
 constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon",
-                                                      "surface_offset"};
+                                                      "surface_offset", "curvature_correction"};
 constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",  "min",
                                                 "max",   "fill",   "velocity", "pressure"};
 constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
@@ -137,6 +137,8 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
       st.opt_number("lambda_threshold", kUnitClosed).value_or(spec.lambda_threshold);
   spec.normal_epsilon = st.opt_number("normal_epsilon", kNonNegative).value_or(spec.normal_epsilon);
   spec.surface_offset = st.opt_bool("surface_offset").value_or(spec.surface_offset);
+  spec.curvature_correction =
+      st.opt_bool("curvature_correction").value_or(spec.curvature_correction);
   spec.hydrostatic_initial_density =
       r.opt_bool("hydrostatic_initial_density").value_or(spec.hydrostatic_initial_density);
 }

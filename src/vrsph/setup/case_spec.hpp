@@ -93,6 +93,7 @@ struct CaseSpec {
   double lambda_threshold = 0.7;
   double normal_epsilon = 0.1;
   bool surface_offset = false;  // curvature referred to the free surface dp/2 outside (not Cen)
+  bool curvature_correction = false;  // stencil-consistent curvature (not Cen)
   bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
 
   // geometry

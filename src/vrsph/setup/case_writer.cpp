@@ -90,9 +90,11 @@ void write_numerics(Writer& w, const CaseSpec& s) {
                                toml_quote(enum_name(kShiftingNames, s.shifting)),
                                num(s.shifting_coefficient), num(s.shifting_surface_threshold)));
   w.kv("surface_tension",
-       fmt::format("{{ lambda_threshold = {}, normal_epsilon = {}, surface_offset = {} }}",
+       fmt::format("{{ lambda_threshold = {}, normal_epsilon = {}, surface_offset = {}, "
+                   "curvature_correction = {} }}",
                    num(s.lambda_threshold), num(s.normal_epsilon),
-                   s.surface_offset ? "true" : "false"));
+                   s.surface_offset ? "true" : "false",
+                   s.curvature_correction ? "true" : "false"));
   w.kv("hydrostatic_initial_density", s.hydrostatic_initial_density ? "true" : "false");
 }
 

@@ -65,6 +65,7 @@ SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0) {
   prm.lambda_threshold = spec.lambda_threshold;
   prm.normal_epsilon = spec.normal_epsilon;
   prm.surface_offset = spec.surface_offset;
+  prm.curvature_correction = spec.curvature_correction;
   prm.shifting = {spec.shifting, spec.shifting_coefficient, spec.shifting_surface_threshold,
                   prm.h, dp};
   prm.dt_min = 0.05 * prm.h / c0;

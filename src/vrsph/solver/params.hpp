@@ -35,6 +35,7 @@ struct SolverParams {
   double lambda_threshold = 0.7;  // surface-tension normal: difference form above this lambda
   double normal_epsilon = 0.1;    // surface-tension normal: |grad lambda| > eps lambda / h
   bool surface_offset = false;    // curvature_at_surface() in the CSF force
+  bool curvature_correction = false;  // corrected_curvature() in step 3
   ShiftingParams shifting;
   double dt_min = 0.0;    // 0.05 h / c0 (DualSPHysics CoefDtMin): below this the run is unstable
 

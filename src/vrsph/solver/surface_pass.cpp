@@ -192,14 +192,15 @@ void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& p
     sf.acc_st[i] = Vec<D>{};
     const Vec<D> n_i = sf.normal[i];
     if (ps.kind[i] == Kind::wall || norm2(n_i) == 0.0) continue;
-    double kappa = 0.0;
+    CurvatureSums sums;
     const Mat<D>& l_i = sf.l_corr[i];
     for_each_neighbour(ps, grid, k.support2, i, false, [&](std::uint32_t j, const Vec<D>& r_ij, double r2) {
       const Vec<D>& n_j = sf.normal[j];
       if (norm2(n_j) == 0.0 || dot(n_i, n_j) < cos_t) return;  // S_ij = 0
       const Vec<D> l_grad_w = l_i * (k.f(std::sqrt(r2)) * r_ij);
-      kappa += ps.mass[j] / ps.rho[j] * dot(n_j - n_i, l_grad_w);
+      add_curvature_pair<D>(sums, ps.mass[j] / ps.rho[j], n_i, n_j, -1.0 * r_ij, l_grad_w);
     });
+    const double kappa = prm.curvature_correction ? corrected_curvature<D>(sums) : sums.kappa;
     sf.curvature[i] = kappa;
     const double delta = surface_delta(norm(sf.grad_c[i]), sf.shepard[i]);
     const double k_force = prm.surface_offset ? curvature_at_surface<D>(kappa, prm.dp) : kappa;
