@@ -15,17 +15,23 @@ namespace {
 
 using test::load_case;
 
+// Steps to end_time exactly (the last step shortened to land on it), then the EOS pressure.
+template <int D>
+void run_to_end(Simulation<D>& sim, double end_time) {
+  while (sim.time() < end_time) {
+    sim.set_stop_time(end_time);
+    sim.step();
+  }
+  sim.update_pressure();
+}
+
 // cases/droplet_2d.toml at dp = 5e-5 to t = 0.2 s: RMSE of the diameter pressure against 36.4 Pa.
 // Poster (DualSPHysics implementation): 0.4960 Pa; our goal 0.35 Pa. VRSPH_SLOW_SHIFTING=skillen
 // runs the Skillen variant.
 LaplaceError run_droplet(std::vector<std::string> sets) {
   CaseSpec spec = load_case("droplet_2d.toml", sets);
   Simulation<2> sim(spec);
-  while (sim.time() < spec.end_time) {
-    sim.set_stop_time(spec.end_time);
-    sim.step();
-  }
-  sim.update_pressure();
+  run_to_end(sim, spec.end_time);
   const OutputLine& line = spec.lines.front();
   const LaplaceError e = line_laplace_error<2>(sim.particles(), line, 36.4, sim.params().h, spec.dp);
   std::printf("droplet_2d dp 5e-5 t 0.2: mean %.3f Pa, RMSE %.4f Pa (NRMSE %.5f), RMSE all %.4f\n",
@@ -73,11 +79,7 @@ TEST(SlowDroplet, SphereWithOffsetAndCurvatureCorrection) {
   CaseSpec spec = load_case("droplet_3d.toml", {"numerics.surface_tension.surface_offset=true",
                                                 "numerics.surface_tension.curvature_correction=true"});
   Simulation<3> sim(spec);
-  while (sim.time() < spec.end_time) {
-    sim.set_stop_time(spec.end_time);
-    sim.step();
-  }
-  sim.update_pressure();
+  run_to_end(sim, spec.end_time);
   const auto& ps = sim.particles();
   double sum = 0.0;
   int n = 0;
