@@ -24,12 +24,13 @@ constexpr std::string_view kEosKeys[] = {"gamma", "max_speed", "sound_speed_fact
 constexpr std::string_view kResolutionKeys[] = {"dp", "h_over_dp"};
 constexpr std::string_view kNumericsKeys[] = {
     "cfl",      "viscosity",       "density_diffusion",
-    "shifting", "surface_tension", "hydrostatic_initial_density"};
+    "shifting", "surface_tension", "hydrostatic_initial_density", "vres_conserve_momentum"};
 constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
 constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
 constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon",
-                                                      "surface_offset", "curvature_correction"};
+                                                      "surface_offset", "curvature_correction",
+                                                      "zero_net_force"};
 constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",  "min",
                                                 "max",   "fill",   "velocity", "pressure"};
 constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
@@ -139,6 +140,9 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
   spec.surface_offset = st.opt_bool("surface_offset").value_or(spec.surface_offset);
   spec.curvature_correction =
       st.opt_bool("curvature_correction").value_or(spec.curvature_correction);
+  spec.zero_net_surface_force = st.opt_bool("zero_net_force").value_or(spec.zero_net_surface_force);
+  spec.vres_conserve_momentum =
+      r.opt_bool("vres_conserve_momentum").value_or(spec.vres_conserve_momentum);
   spec.hydrostatic_initial_density =
       r.opt_bool("hydrostatic_initial_density").value_or(spec.hydrostatic_initial_density);
 }
@@ -256,6 +260,11 @@ CaseSpec parse_case(const toml::table& tbl, const std::string& source_name) {
   for (const auto& r : root.table_array("wall_block", kWallBlockKeys)) {
     spec.wall_blocks.push_back(parse_wall_block(r, spec));
   }
+  root.sub_table("numerics", kNumericsKeys)
+      .sub_table("surface_tension", kSurfaceTensionKeys)
+      .require("zero_net_force", !(spec.zero_net_surface_force && !spec.wall_blocks.empty()),
+               "true with walls: the net capillary force is zero only on a closed free surface "
+               "(drops); with walls it is real");
   parse_domain(root.sub_table("domain", kDomainKeys), spec);
   for (const auto& r : root.table_array("refinement", kRefinementKeys)) {
     spec.refinements.push_back(parse_refinement(r, spec));

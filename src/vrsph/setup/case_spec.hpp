@@ -94,6 +94,8 @@ struct CaseSpec {
   double normal_epsilon = 0.1;
   bool surface_offset = false;  // curvature referred to the free surface dp/2 outside (not Cen)
   bool curvature_correction = false;  // stencil-consistent curvature (not Cen)
+  bool zero_net_surface_force = false;  // remove the net capillary force (closed surfaces; not Cen)
+  bool vres_conserve_momentum = false;  // remove the coupling's net force and momentum jumps
   bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
 
   // geometry

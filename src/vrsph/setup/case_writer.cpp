@@ -91,11 +91,13 @@ void write_numerics(Writer& w, const CaseSpec& s) {
                                num(s.shifting_coefficient), num(s.shifting_surface_threshold)));
   w.kv("surface_tension",
        fmt::format("{{ lambda_threshold = {}, normal_epsilon = {}, surface_offset = {}, "
-                   "curvature_correction = {} }}",
+                   "curvature_correction = {}, zero_net_force = {} }}",
                    num(s.lambda_threshold), num(s.normal_epsilon),
                    s.surface_offset ? "true" : "false",
-                   s.curvature_correction ? "true" : "false"));
+                   s.curvature_correction ? "true" : "false",
+                   s.zero_net_surface_force ? "true" : "false"));
   w.kv("hydrostatic_initial_density", s.hydrostatic_initial_density ? "true" : "false");
+  w.kv("vres_conserve_momentum", s.vres_conserve_momentum ? "true" : "false");
 }
 
 // [[fluid_block]] and [[wall_block]].

@@ -218,13 +218,17 @@ ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
 #pragma omp for schedule(dynamic, 512)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::uint32_t>(ii);
-    if (ps.kind[i] == Kind::buffer) {  // neighbours only: v and rho come from another level
-      ps.acc[i] = Vec<D>{};
+    Accum a;
+    fluid_cand.gather(nb, grid, cells[i], Group::fluid);
+    if (ps.kind[i] == Kind::buffer) {
+      // v and rho come from another level: acc is only the reaction of this level's fluid and
+      // buffer neighbours (walls left out), from which the simulation measures the net force the
+      // buffer exerts on the fluid. Buffer-buffer pairs cancel in that sum.
+      fluid_run<D, VM, DM, false>(prm, nb, i, fluid_cand, a);
+      for (int k = 0; k < D; ++k) ps.acc[i][k] = a.acc[k];
       ps.drho[i] = 0.0;
       continue;
     }
-    Accum a;
-    fluid_cand.gather(nb, grid, cells[i], Group::fluid);
     if (ps.kind[i] == Kind::wall) {
       wall_run(prm, nb, i, fluid_cand, a);
     } else {

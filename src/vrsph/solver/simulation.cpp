@@ -11,6 +11,7 @@
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/solver/level_setup.hpp"
+#include "vrsph/solver/momentum.hpp"
 #include "vrsph/vres/coupling.hpp"
 #include "vrsph/vres/interpolation.hpp"
 #include "vrsph/vres/levels.hpp"
@@ -304,6 +305,21 @@ void Simulation<D>::exchange_buffer_surface_field(std::vector<T> SurfaceFields<D
   }
 }
 
+// The optional corrections of momentum.hpp: the net coupling force F_c (variable resolution) and
+// the net capillary force F_st, removed as a uniform acceleration of the fluid.
+template <int D>
+void Simulation<D>::remove_spurious_net_force(bool surface_tension) {
+  const bool coupling = spec_.vres_conserve_momentum && levels_.size() > 1;
+  const bool capillary = spec_.zero_net_surface_force && surface_tension;
+  if (!coupling && !capillary) return;
+  Vec<D> f{};
+  if (coupling) f += coupling_net_force(levels_);
+  if (capillary) f += surface_net_force(levels_);
+  double mass = 0.0;
+  fluid_momentum(levels_, mass);
+  if (mass > 0.0) add_to_fluid(levels_, f * (-1.0 / mass), false);
+}
+
 // One force evaluation of all levels: the surface passes, then the pair forces of each level
 // with the surface-tension acceleration added.
 template <int D>
@@ -315,6 +331,7 @@ ForceStats Simulation<D>::evaluate_forces() {
   for (Level<D>& L : levels_) {
     s.merge(compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr));
   }
+  remove_spurious_net_force(st);
   times_.forces += now_seconds() - t0;
   return s;
 }
@@ -335,11 +352,18 @@ void Simulation<D>::update_surface_fields() {
 template <int D>
 void Simulation<D>::couple_levels(double dt) {
   const double t0 = now_seconds();
+  double mass = 0.0;
+  const bool conserve = spec_.vres_conserve_momentum;
+  const Vec<D> p_before = conserve ? fluid_momentum(levels_, mass) : Vec<D>{};
   CouplingTally tally;
   accumulate_and_create(levels_, dt, counters_.next_id, tally);
   for (Level<D>& L : levels_) update_kinds(L, tally);
   sort_all();
   if (interpolate_buffers(levels_, tally) > 0) sort_all();
+  if (conserve) {  // momentum.hpp: the jump dP_c of the kind changes, as a uniform velocity
+    const Vec<D> dp = fluid_momentum(levels_, mass) - p_before;
+    if (mass > 0.0) add_to_fluid(levels_, dp * (-1.0 / mass), true);
+  }
   counters_.created += tally.created;
   counters_.deleted += tally.deleted;
   counters_.created_mass += tally.created_mass;

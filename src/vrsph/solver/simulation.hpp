@@ -117,6 +117,7 @@ class Simulation {
   void check_state(const Level<D>& L) const;
   void check_dt() const;
   ForceStats evaluate_forces();
+  void remove_spurious_net_force(bool surface_tension);
   void surface_fields_all();
   template <class T>
   void exchange_buffer_surface_field(std::vector<T> SurfaceFields<D>::*field, double reach_h);
