@@ -126,7 +126,7 @@ TEST(VresStillTank, InterfaceStaysStill) {
 
 // A block moving at U = 1 m/s with no gravity flows through the face x = 0 of a refinement
 // box. Over t the flux is rho U H t; the child must create that mass at its outer buffer face
-// (within a row of particles) and the parent delete it past its buffer.
+// (within 1%) and the parent delete it past its buffer.
 TEST(VresFlux, CreatedMassMatchesFlux) {
   CaseSpec spec = case_from_text(R"(
 [case]
@@ -165,8 +165,10 @@ interval = 0.1
   std::printf("flux %.2f kg/m: created %.2f (%llu particles), deleted %.2f, fluid mass %+.3f%%\n",
               flux, c.created_mass, static_cast<unsigned long long>(c.created), c.deleted_mass,
               100 * (fluid_mass(sim) / m0 - 1));
-  const double row_c = 1000.0 * H * sim.level(1).prm.dp;  // one row of child particles
-  EXPECT_NEAR(c.created_mass, flux, 2 * row_c + 0.03 * flux);
+  // Measured: created 39.80 kg/m, deleted 40.00 (with a yes/no free-surface test at the mass
+  // points instead of the smoothed fill, the block's top and bottom rows were missed: 38.0).
+  EXPECT_NEAR(c.created_mass, flux, 0.01 * flux);
+  EXPECT_NEAR(c.deleted_mass, flux, 0.01 * flux);
   EXPECT_NEAR(fluid_mass(sim) / m0, 1.0, 0.01);
 }
 

@@ -43,7 +43,6 @@ void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64
   if (dt <= 0.0) return;
   for (Level<D>& L : levels) {
     const double m = L.prm.mass;
-    const double threshold = L.prm.shifting.threshold;
     const auto np = static_cast<std::int64_t>(L.mass_points.size());
     std::vector<InterpolatedState<D>> st(L.mass_points.size());
 #pragma omp parallel for schedule(static)
@@ -57,13 +56,17 @@ void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64
     for (std::size_t q = 0; q < L.mass_points.size(); ++q) {
       MassPoint<D>& P = L.mass_points[q];
       const InterpolatedState<D>& s = st[q];
-      // Inside the fluid: enough donor fluid, and either a full support once walls are counted
-      // or a donor particle closer than the finer spacing (thin layers, such as a surge front,
-      // never reach the free-surface threshold but still carry mass across).
-      const double close = std::min(L.prm.dp, levels[static_cast<std::size_t>(P.donor)].prm.dp);
-      if (s.shepard < kVresShepardMin) continue;
-      if (s.div_r + s.div_r_walls < threshold && s.nearest >= close) continue;
-      P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), P.area, dt);
+      // The share of the face element that holds fluid: the donor's kernel-smoothed indicator
+      // sum_j V_j W, walls counted (next to a wall the fluid sum alone falls to about 1/2 where
+      // the element is full). Across a free surface the smoothed indicator integrates to the
+      // fluid's true thickness, so the accumulated flux neither drops the top layers of a flow
+      // (as a yes/no free-surface test on div r did: -5% on a uniform flow through a face, -6%
+      // in the 3D dam break) nor counts whole elements half in air. Inside the fluid it is about
+      // 1 (1.010 on lattice nodes, 0.993 between them, exactly 1 on average). Points inside a
+      // wall (the wall sum exceeds the fluid sum) accumulate nothing.
+      if (s.shepard < kVresShepardMin || s.shepard_walls > s.shepard) continue;
+      const double fill = s.shepard + s.shepard_walls;
+      P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), fill * P.area, dt);
       if (P.mass < m) continue;
       const Vec<D> x_new = P.x - (0.5 * L.prm.dp) * P.n;
       if (crowded(L, x_new, kMinSpacing * L.prm.dp, first_new)) continue;  // mass stays stored

@@ -63,7 +63,9 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
       const Vec<D> r = x - donors.pos[j];
       const double r2 = norm2(r);
       if (r2 >= kernel.support2) continue;
-      out.div_r_walls -= donors.mass[j] / donors.rho[j] * kernel.f(std::sqrt(r2)) * r2;
+      const double v = donors.mass[j] / donors.rho[j];
+      out.div_r_walls -= v * kernel.f(std::sqrt(r2)) * r2;
+      out.shepard_walls += v * kernel.w(std::sqrt(r2));
     }
   });
   if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here

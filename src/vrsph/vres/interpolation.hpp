@@ -55,6 +55,7 @@ struct InterpolatedState {
   double div_r = 0.0;      // -sum_j V_j (x - x_j) . grad W: about D inside the fluid, about D/2
                            // on a flat free surface (the free-surface test)
   double nearest = 1e300;    // distance to the nearest fluid donor (m)
+  double shepard_walls = 0.0;  // sum_j V_j W(x - x_j) over the donor level's wall particles
   double div_r_walls = 0.0;  // the same sum over the donor level's wall particles: a point
                              // next to a wall is inside the fluid when div_r + div_r_walls is
   bool corrected = false;  // true: first-order corrected; false: Shepard fallback (or no support)

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# One PNG with the max_speed column of several runs' series.csv against t (the parasitic-velocity
+# measure), e.g. a variable-resolution droplet against the uniform run at its fine dp.
+#   scripts/compare_max_speed.sh OUT.png DIR1 LABEL1 [DIR2 LABEL2 ...]
+set -euo pipefail
+
+usage() { echo "usage: compare_max_speed.sh OUT.png DIR1 LABEL1 [DIR2 LABEL2 ...]" >&2; }
+die() { echo "compare_max_speed.sh: $*" >&2; exit 1; }
+
+if [ $# -lt 3 ] || [ $(( ($# - 1) % 2 )) -ne 0 ]; then usage; exit 2; fi
+command -v gnuplot > /dev/null || die "gnuplot not found (scripts/setup.sh installs it)"
+out=$1; shift
+plots=""
+while [ $# -gt 0 ]; do
+  dir=${1%/}; label=$2; shift 2
+  f="$dir/series.csv"
+  [ -f "$f" ] || die "$f: no such file"
+  # Column numbers by header name: t and max_speed.
+  cols=$(head -1 "$f" | awk -F, '{for (i = 1; i <= NF; ++i) { if ($i == "t") t = i; if ($i == "max_speed") v = i }
+                                  if (!t || !v) exit 1; print t ":" v}') || die "$f: no t or max_speed column"
+  [ -n "$plots" ] && plots="$plots, "
+  plots="$plots'$f' every ::1 using $cols with lines lw 2 title '${label//\'/}'"
+done
+gnuplot <<GP
+set terminal pngcairo size 900,500
+set output '$out'
+set datafile separator ','
+set xlabel 't (s)'
+set ylabel 'max speed (m/s)'
+set grid
+set key top right
+plot $plots
+GP
+echo "wrote $out"
