@@ -22,7 +22,7 @@ while [ $# -gt 0 ]; do
   plots="$plots'$f' every ::1 using $cols with lines lw 2 title '${label//\'/}'"
 done
 gnuplot <<GP
-set terminal pngcairo size 900,500
+set terminal pngcairo size 900,500 noenhanced
 set output '$out'
 set datafile separator ','
 set xlabel 't (s)'
