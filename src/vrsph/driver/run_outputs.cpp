@@ -4,6 +4,7 @@
 
 #include "vrsph/analysis/laplace.hpp"
 #include "vrsph/driver/checkpoint.hpp"
+#include "vrsph/driver/level_samples.hpp"
 #include "vrsph/output/line_profile.hpp"
 #include "vrsph/output/summary.hpp"
 #include "vrsph/setup/geometry.hpp"
@@ -63,22 +64,6 @@ std::vector<std::string> level_columns(std::size_t levels) {
   }
   for (const char* n : {"created", "deleted", "created_mass", "deleted_mass"}) c.emplace_back(n);
   return c;
-}
-
-// The particles (fluid only) within dp/2 of a line, dp of each level, all levels, sorted by s.
-template <int D>
-std::vector<LineSample<D>> sample_levels(const Simulation<D>& sim, const OutputLine& line) {
-  std::vector<LineSample<D>> all;
-  for (std::size_t l = 0; l < sim.level_count(); ++l) {
-    const auto& L = sim.level(l);
-    auto s = sample_line<D>(L.ps, {}, to_vec<D>(line.from), to_vec<D>(line.to), 0.5 * L.prm.dp);
-    for (auto& q : s) q.level = static_cast<int>(l);
-    all.insert(all.end(), s.begin(), s.end());
-  }
-  std::sort(all.begin(), all.end(), [](const LineSample<D>& a, const LineSample<D>& b) {
-    return a.s < b.s || (a.s == b.s && a.id < b.id);
-  });
-  return all;
 }
 
 }  // namespace

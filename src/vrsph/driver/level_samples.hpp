@@ -1,0 +1,29 @@
+// Line samples over all levels of a run (the Laplace metric and the line files of a VR run).
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "vrsph/output/line_profile.hpp"
+#include "vrsph/setup/geometry.hpp"
+#include "vrsph/solver/simulation.hpp"
+
+namespace vrsph {
+
+// The particles (fluid only) within dp/2 of a line, dp of each level, all levels, sorted by s.
+template <int D>
+std::vector<LineSample<D>> sample_levels(const Simulation<D>& sim, const OutputLine& line) {
+  std::vector<LineSample<D>> all;
+  for (std::size_t l = 0; l < sim.level_count(); ++l) {
+    const auto& L = sim.level(l);
+    auto s = sample_line<D>(L.ps, {}, to_vec<D>(line.from), to_vec<D>(line.to), 0.5 * L.prm.dp);
+    for (auto& q : s) q.level = static_cast<int>(l);
+    all.insert(all.end(), s.begin(), s.end());
+  }
+  std::sort(all.begin(), all.end(), [](const LineSample<D>& a, const LineSample<D>& b) {
+    return a.s < b.s || (a.s == b.s && a.id < b.id);
+  });
+  return all;
+}
+
+}  // namespace vrsph
