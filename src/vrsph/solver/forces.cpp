@@ -207,7 +207,8 @@ inline void wall_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, s
 
 template <int D, ViscosityModel VM, DiffusionModel DM>
 ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                      const NeighbourArrays<D>& nb, const Vec<D>* extra_acc) {
+                      const NeighbourArrays<D>& nb, const Vec<D>* extra_acc,
+                      bool buffer_reaction) {
   const auto& cells = grid.particle_cells();
   const auto n = static_cast<std::int64_t>(ps.size());
   double max_visc_dt = -1e300, max_acc2 = 0.0;
@@ -224,7 +225,7 @@ ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       // v and rho come from another level: acc is only the reaction of this level's fluid and
       // buffer neighbours (walls left out), from which the simulation measures the net force the
       // buffer exerts on the fluid. Buffer-buffer pairs cancel in that sum.
-      fluid_run<D, VM, DM, false>(prm, nb, i, fluid_cand, a);
+      if (buffer_reaction) fluid_run<D, VM, DM, false>(prm, nb, i, fluid_cand, a);
       for (int k = 0; k < D; ++k) ps.acc[i][k] = a.acc[k];
       ps.drho[i] = 0.0;
       continue;
@@ -252,13 +253,14 @@ ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
 template <int D, ViscosityModel VM>
 ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
                               const CellGrid<D>& grid, const NeighbourArrays<D>& nb,
-                              const Vec<D>* extra) {
+                              const Vec<D>* extra, bool br) {
   switch (prm.diffusion) {
-    case DiffusionModel::none: return force_loop<D, VM, DiffusionModel::none>(prm, ps, grid, nb, extra);
+    case DiffusionModel::none:
+      return force_loop<D, VM, DiffusionModel::none>(prm, ps, grid, nb, extra, br);
     case DiffusionModel::molteni:
-      return force_loop<D, VM, DiffusionModel::molteni>(prm, ps, grid, nb, extra);
+      return force_loop<D, VM, DiffusionModel::molteni>(prm, ps, grid, nb, extra, br);
     case DiffusionModel::fourtakas:
-      return force_loop<D, VM, DiffusionModel::fourtakas>(prm, ps, grid, nb, extra);
+      return force_loop<D, VM, DiffusionModel::fourtakas>(prm, ps, grid, nb, extra, br);
   }
   return {};
 }
@@ -273,7 +275,8 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
 
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc) {
+                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc,
+                          bool buffer_reaction) {
   const std::size_t n = ps.size();
   ps.p.resize(n);
   ps.acc.resize(n);
@@ -281,16 +284,18 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
   NeighbourArrays<D>& nb = ws.packed;
   nb.pack(ps, prm.eos);
   if (prm.viscosity == ViscosityModel::laminar) {
-    return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, nb, extra_acc);
+    return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, nb, extra_acc,
+                                                          buffer_reaction);
   }
-  return dispatch_diffusion<D, ViscosityModel::artificial>(prm, ps, grid, nb, extra_acc);
+  return dispatch_diffusion<D, ViscosityModel::artificial>(prm, ps, grid, nb, extra_acc,
+                                                           buffer_reaction);
 }
 
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&,
-                                      ForceWorkspace<2>&, const Vec<2>*);
+                                      ForceWorkspace<2>&, const Vec<2>*, bool);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&,
-                                      ForceWorkspace<3>&, const Vec<3>*);
+                                      ForceWorkspace<3>&, const Vec<3>*, bool);
 
 }  // namespace vrsph

@@ -75,10 +75,13 @@ struct ForceWorkspace {
 
 // Fills ps.p from the EOS, then ps.acc and ps.drho for every particle (acc = 0 on walls).
 // extra_acc (null: none) is a per-particle acceleration added to the fluid's, e.g. surface
-// tension; it counts in ForceStats::max_acc.
+// tension; it counts in ForceStats::max_acc. buffer_reaction: buffer particles get the
+// acceleration their level's fluid and buffer neighbours exert on them (solver/momentum.hpp
+// measures the coupling's net force from it); otherwise their acc is 0.
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc = nullptr);
+                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc = nullptr,
+                          bool buffer_reaction = false);
 // The same with a workspace of its own (tests, one-off evaluations).
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid);

@@ -9,7 +9,7 @@
 //   sum F_c = F_A<-bufA + F_B<-bufB is momentum created by the coupling. The force a level's
 //   buffer exerts on its fluid is minus the reaction its buffer particles receive from that fluid,
 //   F_<-buf = -sum_buffer m_j a_j (buffer-buffer pairs cancel in the sum), so F_c is measured
-//   exactly from the buffer accelerations (forces.cpp computes them and nothing else uses them).
+//   exactly from the buffer accelerations (forces.cpp computes them only for this option).
 //   The same holds for the kind changes after a step: fluid that enters a buffer leaves the
 //   fluid set with its momentum, and buffer particles that become fluid bring an interpolated
 //   velocity, so the fluid momentum jumps by dP_c. The correction removes F_c as a uniform

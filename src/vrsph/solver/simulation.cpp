@@ -328,8 +328,10 @@ ForceStats Simulation<D>::evaluate_forces() {
   const double t0 = now_seconds();
   const bool st = levels_[0].prm.sigma > 0.0;
   ForceStats s;
+  const bool reaction = spec_.vres_conserve_momentum && levels_.size() > 1;
   for (Level<D>& L : levels_) {
-    s.merge(compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr));
+    s.merge(compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr,
+                           reaction));
   }
   remove_spurious_net_force(st);
   times_.forces += now_seconds() - t0;
