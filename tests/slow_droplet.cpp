@@ -94,7 +94,9 @@ TEST(SlowDroplet, SphereWithOffsetAndCurvatureCorrection) {
 
 // cases/droplet_vr_2d.toml (dp 1e-4 / 5e-5, 4h buffers, the case's options) to t = 0.5 s: the
 // RMSE of the diameter pressure over both levels against the poster's VR figure, 0.7708 Pa.
-// Measured 0.586 Pa (mean 35.87 Pa, 1,889 s on one thread); our goal is 0.50 Pa.
+// The figure depends on the trajectory: `vrsph run` (steps shortened to land on every 10 ms
+// output) measured 0.586 Pa, this test (no output stops) 1.315 Pa (mean 36.19 Pa, 1,963 s on one
+// thread). It stays red until the crossings are fixed (docs/validation.md).
 TEST(SlowDroplet, VariableResolutionBeatsThePosterRmse) {
   CaseSpec spec = load_case("droplet_vr_2d.toml", {});
   Simulation<2> sim(spec);
