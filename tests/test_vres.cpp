@@ -23,11 +23,7 @@ CaseSpec case_from_text(const std::string& text) {
 
 double fluid_mass(const Simulation<2>& sim) {
   double m = 0.0;
-  for (std::size_t l = 0; l < sim.level_count(); ++l) {
-    const auto& ps = sim.level(l).ps;
-    for (std::size_t i = 0; i < ps.size(); ++i)
-      if (ps.kind[i] == Kind::fluid) m += ps.mass[i];
-  }
+  sim.fluid_momentum(m);
   return m;
 }
 
@@ -223,21 +219,6 @@ TEST(VresDroplet, CurvatureAtTheCrossingsMatchesTheRestOfTheSurface) {
   }
 }
 
-// Fluid momentum over all levels (buffers excluded) and the fluid mass.
-Vec<2> fluid_momentum_of(const Simulation<2>& sim, double& mass) {
-  Vec<2> p{};
-  mass = 0.0;
-  for (std::size_t l = 0; l < sim.level_count(); ++l) {
-    const auto& ps = sim.level(l).ps;
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      if (ps.kind[i] != Kind::fluid) continue;
-      p += ps.mass[i] * ps.vel[i];
-      mass += ps.mass[i];
-    }
-  }
-  return p;
-}
-
 // numerics.vres_conserve_momentum and numerics.surface_tension.zero_net_force (momentum.hpp) on
 // the VR droplet (dp 2e-4 / 1e-4, 10 ms; no walls, no gravity): with both the fluid momentum
 // stays at round-off. Without them the one-sided coupling and the unequal capillary pulls of the
@@ -254,7 +235,7 @@ TEST(VresDroplet, MomentumCorrectionsKeepTheDropAtRest) {
     Simulation<2> sim(spec);
     while (sim.time() < spec.end_time - 1e-12) sim.step();
     double m = 0.0;
-    const Vec<2> p = fluid_momentum_of(sim, m);
+    const Vec<2> p = sim.fluid_momentum(m);
     speed[with] = norm(p) / m;
     std::printf("VR droplet, corrections %s: centroid speed %.3g m/s at 10 ms\n",
                 with ? "on" : "off", speed[with]);

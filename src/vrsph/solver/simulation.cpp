@@ -119,6 +119,11 @@ std::size_t Simulation<D>::count(Kind k) const {
 }
 
 template <int D>
+Vec<D> Simulation<D>::fluid_momentum(double& mass) const {
+  return vrsph::fluid_momentum(levels_, mass);
+}
+
+template <int D>
 void Simulation<D>::sort_particles(Level<D>& L) {
   const double t0 = now_seconds();
   const auto lost = L.grid.sort(L.ps);
@@ -316,7 +321,7 @@ void Simulation<D>::remove_spurious_net_force(bool surface_tension) {
   if (coupling) f += coupling_net_force(levels_);
   if (capillary) f += surface_net_force(levels_);
   double mass = 0.0;
-  fluid_momentum(levels_, mass);
+  fluid_momentum(mass);
   if (mass > 0.0) add_to_fluid(levels_, f * (-1.0 / mass), false);
 }
 
@@ -356,14 +361,14 @@ void Simulation<D>::couple_levels(double dt) {
   const double t0 = now_seconds();
   double mass = 0.0;
   const bool conserve = spec_.vres_conserve_momentum;
-  const Vec<D> p_before = conserve ? fluid_momentum(levels_, mass) : Vec<D>{};
+  const Vec<D> p_before = conserve ? fluid_momentum(mass) : Vec<D>{};
   CouplingTally tally;
   accumulate_and_create(levels_, dt, counters_.next_id, tally);
   for (Level<D>& L : levels_) update_kinds(L, tally);
   sort_all();
   if (interpolate_buffers(levels_, tally) > 0) sort_all();
   if (conserve) {  // momentum.hpp: the jump dP_c of the kind changes, as a uniform velocity
-    const Vec<D> dp = fluid_momentum(levels_, mass) - p_before;
+    const Vec<D> dp = fluid_momentum(mass) - p_before;
     if (mass > 0.0) add_to_fluid(levels_, dp * (-1.0 / mass), true);
   }
   counters_.created += tally.created;

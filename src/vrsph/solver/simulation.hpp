@@ -97,6 +97,9 @@ class Simulation {
   // Number of particles of all levels.
   std::size_t total_particles() const;
   std::size_t count(Kind k) const;
+  // Fluid momentum sum m v over all levels (buffer and wall particles excluded); mass gets the
+  // fluid mass (solver/momentum.hpp).
+  Vec<D> fluid_momentum(double& mass) const;
 
   // Pressure of every particle from its current density (outputs).
   void update_pressure();
