@@ -175,32 +175,6 @@ TEST(ShiftingDisplacement, LindMagnitudeAndSurfaceScaling) {
   EXPECT_EQ(norm(shifting_displacement<3>(s3, g3, 2.7, 0.0, 1e-5)), 0.0);
 }
 
-// Buffer particles (physics/shifting.hpp, buffer_shift): no component along the interface face
-// normal, nor along the free-surface normal where there is one.
-TEST(ShiftingDisplacement, BufferShiftDropsFaceAndSurfaceNormalComponents) {
-  const Vec<2> dr{{3e-6, -4e-6}};
-  const Vec<2> nx{{1.0, 0.0}}, ny{{0.0, 1.0}};
-  // No free surface: only the face-normal component goes.
-  const Vec<2> a = buffer_shift<2>(dr, nx, Vec<2>{});
-  EXPECT_EQ(a[0], 0.0);
-  EXPECT_EQ(a[1], -4e-6);
-  // The surface crosses the face at right angles: nothing is left in 2D.
-  EXPECT_EQ(norm(buffer_shift<2>(dr, nx, ny)), 0.0);
-  // Surface normal parallel to the face normal: the tangential part stays.
-  const Vec<2> c = buffer_shift<2>(dr, nx, Vec<2>{{-1.0, 0.0}});
-  EXPECT_EQ(c[0], 0.0);
-  EXPECT_EQ(c[1], -4e-6);
-  // A slanted surface in 2D still leaves nothing (two independent directions removed).
-  const double s = 1.0 / std::sqrt(2.0);
-  EXPECT_LT(norm(buffer_shift<2>(dr, nx, Vec<2>{{s, s}})), 1e-21);
-  // 3D: face x, surface normal in the x-y plane: only the z component is left.
-  const Vec<3> d3{{1e-6, 2e-6, 3e-6}};
-  const Vec<3> b = buffer_shift<3>(d3, Vec<3>{{1.0, 0.0, 0.0}}, Vec<3>{{s, s, 0.0}});
-  EXPECT_NEAR(b[0], 0.0, 1e-21);
-  EXPECT_NEAR(b[1], 0.0, 1e-21);
-  EXPECT_NEAR(b[2], 3e-6, 1e-21);
-}
-
 TEST(ShiftingDisplacement, SkillenScalesWithSpeedTimesDt) {
   const double dp = 1e-4;
   const ShiftingParams s = shifting_params<2>(ShiftingModel::skillen, dp);

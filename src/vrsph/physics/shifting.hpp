@@ -34,21 +34,4 @@ inline Vec<D> shifting_displacement(const ShiftingParams& s, const Vec<D>& grad_
   return dr;
 }
 
-// Shift of a buffer particle (PHYSICS.md section 5): without its component along the unit normal
-// n_f of the nearest interface face and, where the particle has a free-surface normal n_s (zero
-// elsewhere), without its component along n_s either. Buffer velocities are interpolated from the
-// other level, so nothing pulls a buffer particle back once shifting has moved it: the Lind and
-// Skillen shifts of the rows next to a free surface point outwards (grad C points inwards), and
-// a buffer kept them would move its surface rows out of the donor level's free surface, with every
-// step adding to it. The two directions are made orthonormal (Gram-Schmidt) before they are
-// removed; where the surface crosses the interface (n_s normal to n_f in 2D) nothing is left.
-template <int D>
-inline Vec<D> buffer_shift(Vec<D> dr, const Vec<D>& n_face, const Vec<D>& n_surface) {
-  dr -= dot(dr, n_face) * n_face;
-  Vec<D> e = n_surface - dot(n_surface, n_face) * n_face;
-  const double e2 = norm2(e);
-  if (e2 > 1e-12) dr -= (dot(dr, e) / e2) * e;
-  return dr;
-}
-
 }  // namespace vrsph

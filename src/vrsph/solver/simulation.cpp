@@ -192,9 +192,8 @@ void Simulation<D>::predictor(Level<D>& L, double dt) {
 }
 
 // Corrector: v' = v + dt (a+ + g), x' = x + dt (v + v')/2 + dr_shift, rho' = rho (2 - eps)/(2 + eps),
-// eps = -(drho+/rho+) dt. Buffer particles: x' = x + dt v + dr_shift without its components
-// normal to the nearest interface face (PHYSICS.md section 5) and to the free surface
-// (buffer_shift, physics/shifting.hpp); v and rho unchanged.
+// eps = -(drho+/rho+) dt. Buffer particles: x' = x + dt v + dr_shift without its component
+// normal to the nearest interface face (PHYSICS.md section 5); v and rho unchanged.
 template <int D>
 void Simulation<D>::corrector(Level<D>& L, double dt) {
   ParticleSet<D>& ps = L.ps;
@@ -216,8 +215,7 @@ void Simulation<D>::corrector(Level<D>& L, double dt) {
     if (ps.kind[i] == Kind::buffer) {
       if (shifting) {
         const Vec<D> nf = L.region.classify(ps.pos0[i]).face_normal;
-        const Vec<D> ns = prm.sigma > 0.0 ? L.sf.normal[i] : Vec<D>{};
-        ps.shift[i] = buffer_shift<D>(ps.shift[i], nf, ns);
+        ps.shift[i] -= dot(ps.shift[i], nf) * nf;
       }
       ps.rho[i] = ps.rho0[i];
       ps.vel[i] = ps.vel0[i];
