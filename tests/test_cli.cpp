@@ -508,6 +508,31 @@ to = [1.0, 0.05]
   EXPECT_FALSE(fs::exists(out / "line_bottom_0003.csv"));
 }
 
+// With analysis.laplace_pressure and a line, series.csv follows the Laplace figures in time
+// (laplace_mean_interior, laplace_rmse at every output) and its last row repeats summary.json's.
+TEST(CliRun, SeriesFollowsTheLaplaceError) {
+  TempDir dir;
+  const fs::path out = dir / "run";
+  const CmdResult r = dir.run({"run", (kCases / "droplet_2d.toml").string(), "--out", out.string(),
+                               "--quiet", "--threads", "1", "--set", "resolution.dp=2e-4", "--set",
+                               "case.end_time=0.004", "--set", "output.interval=0.002", "--set",
+                               "output.formats=[\"csv\"]"});
+  ASSERT_EQ(r.status, 0) << r;
+  const auto series = read_lines(out / "series.csv");
+  ASSERT_EQ(series.size(), 4u);
+  const auto head = split_csv(series[0]);
+  ASSERT_GE(head.size(), 2u);
+  EXPECT_EQ(head[head.size() - 2], "laplace_mean_interior") << series[0];
+  EXPECT_EQ(head.back(), "laplace_rmse") << series[0];
+  // t = 0 at rest: every particle at p = 0, so the RMSE is the Laplace value itself.
+  EXPECT_NEAR(num(split_csv(series[1]).back()), 36.4, 1e-9) << series[1];
+  const auto last = split_csv(series.back());
+  const auto sj = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_DOUBLE_EQ(num(last.back()), sj.at("laplace").at("rmse").get<double>());
+  EXPECT_DOUBLE_EQ(num(last[last.size() - 2]), sj.at("laplace").at("mean_interior").get<double>());
+  EXPECT_LT(num(last.back()), 36.4) << "the interior pressure has started to rise";
+}
+
 TEST(CliRun, ResolvedCaseReproducesTheRun) {
   // case.toml is "the case exactly as run": running it again gives the same particles.
   TempDir dir;

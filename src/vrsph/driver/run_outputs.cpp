@@ -66,6 +66,29 @@ std::vector<std::string> level_columns(std::size_t levels) {
   return c;
 }
 
+// With analysis.laplace_pressure and a line: the summary's Laplace figures at every output, so
+// that a run's RMSE can be followed in time (at one instant it moves with the drop's shape
+// oscillations).
+bool has_laplace(const CaseSpec& spec) { return spec.laplace_pressure && !spec.lines.empty(); }
+
+std::vector<std::string> extra_columns(const CaseSpec& spec) {
+  std::vector<std::string> c = level_columns(spec.refinements.size() + 1);
+  if (has_laplace(spec)) {
+    c.emplace_back("laplace_mean_interior");
+    c.emplace_back("laplace_rmse");
+  }
+  return c;
+}
+
+// The Laplace error on the first line (summary.json's `laplace`), 2h of the level at each end.
+template <int D>
+LaplaceError first_line_laplace(const Simulation<D>& sim, const CaseSpec& spec) {
+  const auto samples = sample_levels(sim, spec.lines.front());
+  const double h_first = samples.empty() ? 0.0 : sim.level(samples.front().level).prm.h;
+  const double h_last = samples.empty() ? 0.0 : sim.level(samples.back().level).prm.h;
+  return laplace_error<D>(samples, *spec.laplace_pressure, h_first, h_last);
+}
+
 }  // namespace
 
 template <int D>
@@ -73,7 +96,7 @@ RunOutputs<D>::RunOutputs(const CaseSpec& spec, std::filesystem::path dir, bool 
     : spec_(spec),
       dir_(std::move(dir)),
       pvd_(open_pvd(dir_ / "particles.pvd", fresh, t)),
-      series_(open_series(dir_ / "series.csv", fresh, t, level_columns(spec.refinements.size() + 1))) {}
+      series_(open_series(dir_ / "series.csv", fresh, t, extra_columns(spec))) {}
 
 template <int D>
 void RunOutputs<D>::write(Simulation<D>& sim, int index) {
@@ -119,6 +142,11 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
     row.extra.push_back(static_cast<double>(c.deleted));
     row.extra.push_back(c.created_mass);
     row.extra.push_back(c.deleted_mass);
+  }
+  if (has_laplace(spec_)) {
+    const LaplaceError e = first_line_laplace(sim, spec_);
+    row.extra.push_back(e.mean_interior);
+    row.extra.push_back(e.rmse);
   }
   series_.append(row);
   // Checkpoint: everything needed to continue bit for bit from this output time.
@@ -191,17 +219,12 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
   const PassTimes& t = sim.pass_times();
   j["pass_seconds"] = {{"sort", t.sort},     {"surface", t.surface}, {"forces", t.forces},
                        {"update", t.update}, {"checks", t.checks}, {"coupling", t.coupling}};
-  if (spec_.laplace_pressure && !spec_.lines.empty()) {
-    const OutputLine& line = spec_.lines.front();
-    const auto samples = sample_levels(sim, line);
-    // 2h of the level at each end of the line
-    const double h_first = samples.empty() ? 0.0 : sim.level(samples.front().level).prm.h;
-    const double h_last = samples.empty() ? 0.0 : sim.level(samples.back().level).prm.h;
-    const LaplaceError e = laplace_error<D>(samples, *spec_.laplace_pressure, h_first, h_last);
+  if (has_laplace(spec_)) {
+    const LaplaceError e = first_line_laplace(sim, spec_);
     j["laplace"] = {{"expected", e.expected}, {"mean_interior", e.mean_interior},
                     {"rmse", e.rmse},         {"nrmse", e.nrmse},
                     {"rmse_all", e.rmse_all}, {"n_points", e.n_points},
-                    {"line", line.name}};
+                    {"line", spec_.lines.front().name}};
   }
   return j;
 }
