@@ -8,6 +8,7 @@
 #   plot_pressure_NNNN.png  particles at (x, y) coloured by p (3D: the slice |z| < dp); walls grey
 #   plot_lambda_NNNN.png    the same coloured by lambda (the surface-tension eigenvalue), if written
 #   plot_max_speed.png      series.csv max_speed against t (the parasitic-velocity measure)
+#   plot_laplace_rmse.png   series.csv laplace_rmse and laplace_mean_interior against t, if present
 # Columns are found by their header names, so 2D and 3D files both work.
 set -euo pipefail
 
@@ -232,4 +233,28 @@ plot "$tmp/series.dat" using 1:2 with linespoints pt 7 ps 0.5 lw 2 lc rgb "#1f77
 GP
     echo "wrote $dir/plot_max_speed.png"
   fi
+fi
+
+# ---------------------------------------------------------------------------------------------
+# 5. The Laplace error against t, when series.csv has it (analysis.laplace_pressure with a line).
+if [ -f "$series" ] && head -1 "$series" | grep -q "laplace_rmse"; then
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+           { print $c["t"], $c["laplace_rmse"], $c["laplace_mean_interior"] }' "$series" \
+    > "$tmp/laplace.dat"
+  gnuplot <<GP
+set terminal pngcairo size 900,560 noenhanced
+set output "$dir/plot_laplace_rmse.png"
+set grid
+set key top right
+set xlabel "t (s)"
+set ylabel "RMSE along the line (Pa)"
+set y2label "mean interior pressure (Pa)"
+set ytics nomirror
+set y2tics
+set logscale y
+set title "$case_name: pressure error along the first line against the Laplace value"
+plot "$tmp/laplace.dat" using 1:2 with linespoints pt 7 ps 0.5 lw 2 lc rgb "#1f77b4" title "laplace_rmse", \
+     "" using 1:3 axes x1y2 with lines lw 1 lc rgb "#d62728" title "laplace_mean_interior (right axis)"
+GP
+  echo "wrote $dir/plot_laplace_rmse.png"
 fi

@@ -1,5 +1,7 @@
 #include "vrsph/driver/run_outputs.hpp"
 
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "vrsph/analysis/laplace.hpp"
@@ -145,8 +147,9 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   }
   if (has_laplace(spec_)) {
     const LaplaceError e = first_line_laplace(sim, spec_);
-    row.extra.push_back(e.mean_interior);
-    row.extra.push_back(e.rmse);
+    const double none = std::numeric_limits<double>::quiet_NaN();  // no particle on the line
+    row.extra.push_back(e.n_points > 0 ? e.mean_interior : none);
+    row.extra.push_back(e.n_points > 0 ? e.rmse : none);
   }
   series_.append(row);
   // Checkpoint: everything needed to continue bit for bit from this output time.
