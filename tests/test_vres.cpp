@@ -79,38 +79,6 @@ TEST(VresLayout, MassPointsTileTheOuterFaces) {
   }
 }
 
-// Each mass point knows its neighbours on the same face (where mass stored above a free surface
-// is passed on): one face spacing away, with the same normal, and mutual. 2D (two per point
-// except at face ends) and 3D (up to four).
-template <int D>
-void check_mass_point_neighbours(const char* file) {
-  CaseSpec spec = load_case(file, {});
-  const auto levels = make_level_layout<D>(spec);
-  for (const auto& lv : levels) {
-    const auto pts = level_mass_points<D>(lv.region, lv.dp);
-    std::size_t linked = 0;
-    for (std::size_t q = 0; q < pts.size(); ++q) {
-      for (const std::int32_t k : pts[q].nb) {
-        if (k < 0) continue;
-        ++linked;
-        ASSERT_LT(static_cast<std::size_t>(k), pts.size());
-        const auto& o = pts[static_cast<std::size_t>(k)];
-        EXPECT_EQ(norm(o.n - pts[q].n), 0.0);
-        EXPECT_NEAR(norm(o.x - pts[q].x), lv.dp, 0.2 * lv.dp);
-        int back = 0;
-        for (const std::int32_t b : o.nb) back += b == static_cast<std::int32_t>(q);
-        EXPECT_EQ(back, 1);
-      }
-    }
-    if (!pts.empty()) EXPECT_GT(linked, pts.size());  // most points have two or more
-  }
-}
-
-TEST(VresLayout, MassPointsKnowTheirFaceNeighbours) {
-  check_mass_point_neighbours<2>("droplet_vr_2d.toml");
-  check_mass_point_neighbours<3>("dam_break_vr_3d.toml");
-}
-
 TEST(VresLayout, RefusesOverlappingAndTightBoxes) {
   CaseSpec spec = load_case("droplet_vr_2d.toml", {});
   spec.refinements.push_back(RefinementBox{{-0.001, -0.001, 0}, {0.001, 0.001, 0}, 2, 4.0});
@@ -249,40 +217,6 @@ TEST(VresDroplet, CurvatureAtTheCrossingsMatchesTheRestOfTheSurface) {
                 l, near, far);
     EXPECT_NEAR(near / far, 1.0, 0.1);
   }
-}
-
-// A buffer particle carried above the donor level's free surface (donor fill below 1/2) is
-// deleted when the buffers are next interpolated; one inside the fluid next to it is kept. The
-// VR droplet at dp 2e-4 / 1e-4: the fine buffer particle nearest to (-2.5e-4, 1.85e-3), inside
-// the coarse fluid near the top crossing, is moved to 2.1 mm: the coarse outer row there lies at
-// 1.9 mm, so the point is half a coarse spacing beyond the surface (fill about 0.2, which the
-// "no fluid" test, fill < 0.05, alone would keep).
-TEST(VresDroplet, BufferParticleAboveTheDonorSurfaceIsDeleted) {
-  CaseSpec spec = load_case("droplet_vr_2d.toml", {"resolution.dp=2e-4"});
-  Simulation<2> sim(spec);
-  auto& ps = sim.level(1).ps;
-  auto nearest = [&](const Vec<2>& x) {
-    std::size_t best = ps.size();
-    for (std::size_t i = 0; i < ps.size(); ++i)
-      if (ps.kind[i] == Kind::buffer && (best == ps.size() || norm(ps.pos[i] - x) < norm(ps.pos[best] - x)))
-        best = i;
-    return best;
-  };
-  const std::size_t lifted = nearest(Vec<2>{{-2.5e-4, 1.85e-3}});
-  const std::size_t kept = nearest(Vec<2>{{-2.5e-4, 1.2e-3}});
-  ASSERT_LT(lifted, ps.size());
-  ASSERT_NE(lifted, kept);
-  const std::uint64_t id_lifted = ps.id[lifted], id_kept = ps.id[kept];
-  ps.pos[lifted] = Vec<2>{{ps.pos[lifted][0], 2.1e-3}};  // half a coarse spacing above the surface
-  sim.set_stop_time(1e-6);
-  sim.step();
-  bool found_lifted = false, found_kept = false;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    found_lifted |= ps.id[i] == id_lifted;
-    found_kept |= ps.id[i] == id_kept;
-  }
-  EXPECT_FALSE(found_lifted);
-  EXPECT_TRUE(found_kept);
 }
 
 // numerics.vres_conserve_momentum and numerics.surface_tension.zero_net_force (momentum.hpp) on

@@ -35,29 +35,6 @@ bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t fi
   return found;
 }
 
-// Mass stored at points above the donor's free surface moves to the same-face neighbour with the
-// largest fill, one point per step, until it reaches a point inside the fluid that can create.
-// The flux is accumulated with the smoothed fill (below), which over a surface crossing integrates
-// to the fluid's true thickness only if the share counted above the surface is not lost.
-template <int D>
-void pass_mass_inwards(std::vector<MassPoint<D>>& points, const std::vector<InterpolatedState<D>>& st) {
-  for (std::size_t q = 0; q < points.size(); ++q) {
-    MassPoint<D>& P = points[q];
-    const double fill = donor_fill(st[q]);
-    if (P.mass <= 0.0 || fill >= kVresSurfaceFill) continue;
-    std::int32_t best = -1;
-    double best_fill = fill;
-    for (const std::int32_t k : P.nb) {
-      if (k < 0) continue;
-      const double f = donor_fill(st[static_cast<std::size_t>(k)]);
-      if (f > best_fill) best = k, best_fill = f;
-    }
-    if (best < 0) continue;
-    points[static_cast<std::size_t>(best)].mass += P.mass;
-    P.mass = 0.0;
-  }
-}
-
 }  // namespace
 
 template <int D>
@@ -75,7 +52,6 @@ void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64
       st[static_cast<std::size_t>(q)] =
           interpolate_from_level<D>(P.x, donor.ps, donor.grid, donor.prm.kernel);
     }
-    pass_mass_inwards(L.mass_points, st);
     const std::size_t first_new = L.ps.size();
     for (std::size_t q = 0; q < L.mass_points.size(); ++q) {
       MassPoint<D>& P = L.mass_points[q];
@@ -91,10 +67,7 @@ void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64
       if (s.shepard < kVresShepardMin || s.shepard_walls > s.shepard) continue;
       const double fill = s.shepard + s.shepard_walls;
       P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), fill * P.area, dt);
-      // A particle is created only where the point lies inside the donor's fluid (fill >= 1/2):
-      // one created above the free surface would stand out of the level's surface, and the
-      // buffer particles there are deleted anyway (interpolate_buffers).
-      if (P.mass < m || donor_fill(s) < kVresSurfaceFill) continue;
+      if (P.mass < m) continue;
       const Vec<D> x_new = P.x - (0.5 * L.prm.dp) * P.n;
       if (crowded(L, x_new, kMinSpacing * L.prm.dp, first_new)) continue;  // mass stays stored
       P.mass -= m;
@@ -143,13 +116,7 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& ta
       const Level<D>& donor = levels[static_cast<std::size_t>(z.donor)];
       const InterpolatedState<D> s =
           interpolate_from_level<D>(ps.pos[i], donor.ps, donor.grid, donor.prm.kernel);
-      // No donor fluid in reach, or outside the donor's free surface (donor_fill < 1/2). Buffer
-      // particles follow the donor's velocity and nothing pulls them back to its surface: without
-      // the second test those created or carried beyond it stay there, and the level's surface
-      // stands out where it crosses the interface (2D VR droplet: fine buffer particles up to one
-      // coarse spacing above the coarse surface, holding the fine surface next to them 0.07 mm
-      // above the circle and the drop's pressure 4% low).
-      if (s.shepard < kVresShepardMin || donor_fill(s) < kVresSurfaceFill) {
+      if (s.shepard < kVresShepardMin) {
         keep[i] = 0;
         ++removed;
         continue;

@@ -102,8 +102,6 @@ struct MassPoint {
   double area = 0.0;   // face area (2D: length) the point stands for, about dp^(D-1)
   int donor = -1;      // level whose fluid flows across the face
   double mass = 0.0;   // accumulated mass, kg
-  std::array<std::int32_t, 4> nb{-1, -1, -1, -1};  // neighbours on the same face (index in the
-                                                   // level's list), -1: none
 };
 
 // What one level owns. A child level has an own box (its refinement box); any level may have
@@ -170,16 +168,9 @@ std::vector<MassPoint<D>> face_points(const Box<D>& b, double dp, bool outward, 
         area *= (b.hi[k] - b.lo[k]) / count[m];
         ++m;
       }
-      const long base = static_cast<long>(out.size());
-      const long nj = D == 3 ? count[1] : 1;
       for (long i = 0; i < count[0]; ++i) {
-        for (long j = 0; j < nj; ++j) {
+        for (long j = 0; j < (D == 3 ? count[1] : 1); ++j) {
           MassPoint<D> p;
-          auto index = [&](long ii, long jj) { return static_cast<std::int32_t>(base + ii * nj + jj); };
-          if (i > 0) p.nb[0] = index(i - 1, j);
-          if (i + 1 < count[0]) p.nb[1] = index(i + 1, j);
-          if (j > 0) p.nb[2] = index(i, j - 1);
-          if (j + 1 < nj) p.nb[3] = index(i, j + 1);
           p.x[a] = side == 0 ? b.lo[a] : b.hi[a];
           p.n[a] = (side == 0 ? -1.0 : 1.0) * (outward ? 1.0 : -1.0);
           const std::array<long, 2> idx{i, j};
@@ -205,10 +196,6 @@ std::vector<MassPoint<D>> level_mass_points(const LevelRegion<D>& r, double dp) 
   if (r.has_box) out = face_points<D>(r.box.grown(r.width), dp, true, r.parent);
   for (const auto& c : r.children) {
     auto in = face_points<D>(c.box.grown(-c.width), dp, false, c.level);
-    const auto offset = static_cast<std::int32_t>(out.size());
-    for (MassPoint<D>& p : in)
-      for (std::int32_t& k : p.nb)
-        if (k >= 0) k += offset;
     out.insert(out.end(), in.begin(), in.end());
   }
   return out;
