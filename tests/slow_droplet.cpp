@@ -92,24 +92,35 @@ TEST(SlowDroplet, SphereWithOffsetAndCurvatureCorrection) {
   EXPECT_NEAR(sum / n, 72.8, 0.05 * 72.8);
 }
 
-// cases/droplet_vr_2d.toml (dp 1e-4 / 5e-5, 4h buffers, the case's options) to t = 0.5 s: the
-// RMSE of the diameter pressure over both levels against the poster's VR figure, 0.7708 Pa.
-// The figure depends on the trajectory: `vrsph run` (steps shortened to land on every 10 ms
-// output) measured 0.586 Pa, this test (no output stops) 1.315 Pa (mean 36.19 Pa, 1,963 s on one
-// thread). It stays red until the crossings are fixed (docs/validation.md).
+// cases/droplet_vr_2d.toml (dp 1e-4 / 5e-5, 4h buffers, the case's options) to t = 0.5 s, with
+// the steps landing on every 10 ms as `vrsph run` does with its outputs: the RMSE of the diameter
+// pressure over both levels against the poster's VR figure, 0.7708 Pa. The drop keeps a shape
+// oscillation (mode n = 2, period 27 ms) stirred where the surface crosses the interface, so the
+// RMSE at one instant is a draw from a wide distribution: the case run reads 0.586 Pa at 0.5 s
+// but 0.59-2.55 Pa over 0.40-0.50 s (and 1.315 Pa at 0.5 s without the output stops). The test
+// asserts the mean of the 11 samples from 0.40 to 0.50 s, and prints each. Measured: 1.48 Pa
+// (the fine surface stands proud at one crossing from 0.26 s; docs/validation.md), so it is red.
 TEST(SlowDroplet, VariableResolutionBeatsThePosterRmse) {
   CaseSpec spec = load_case("droplet_vr_2d.toml", {});
   Simulation<2> sim(spec);
-  run_to_end(sim, spec.end_time);
-  const auto samples = sample_levels(sim, spec.lines.front());
-  ASSERT_FALSE(samples.empty());
-  const double h_first = sim.level(samples.front().level).prm.h;
-  const double h_last = sim.level(samples.back().level).prm.h;
-  const LaplaceError e = laplace_error<2>(samples, 36.4, h_first, h_last);
-  std::printf("droplet_vr_2d t 0.5: mean %.3f Pa, RMSE %.4f Pa (NRMSE %.5f), RMSE all %.4f\n",
-              e.mean_interior, e.rmse, e.nrmse, e.rmse_all);
-  EXPECT_NEAR(e.mean_interior, 36.4, 0.03 * 36.4);
-  EXPECT_LT(e.rmse, 0.7708);
+  double sum_rmse = 0.0, sum_mean = 0.0;
+  int n = 0;
+  for (int k = 1; k <= 50; ++k) {
+    run_to_end(sim, 0.01 * k);
+    if (k < 40) continue;
+    const auto samples = sample_levels(sim, spec.lines.front());
+    ASSERT_FALSE(samples.empty());
+    const double h_first = sim.level(samples.front().level).prm.h;
+    const double h_last = sim.level(samples.back().level).prm.h;
+    const LaplaceError e = laplace_error<2>(samples, 36.4, h_first, h_last);
+    std::printf("droplet_vr_2d t %.2f: mean %.3f Pa, RMSE %.4f Pa (NRMSE %.5f), RMSE all %.4f\n",
+                sim.time(), e.mean_interior, e.rmse, e.nrmse, e.rmse_all);
+    sum_rmse += e.rmse, sum_mean += e.mean_interior, ++n;
+  }
+  std::printf("droplet_vr_2d 0.4-0.5 s: mean RMSE %.4f Pa, mean interior %.3f Pa\n", sum_rmse / n,
+              sum_mean / n);
+  EXPECT_NEAR(sum_mean / n, 36.4, 0.03 * 36.4);
+  EXPECT_LT(sum_rmse / n, 0.7708);
 }
 
 }  // namespace
