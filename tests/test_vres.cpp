@@ -219,6 +219,40 @@ TEST(VresDroplet, CurvatureAtTheCrossingsMatchesTheRestOfTheSurface) {
   }
 }
 
+// A buffer particle carried outside the donor level's free surface (donor fill below
+// kVresBufferFillMin = 0.4) is deleted when the buffers are next interpolated; one inside the
+// fluid is kept. The VR droplet at dp 2e-4 / 1e-4: the fine buffer particle nearest to
+// (-2.5e-4, 1.85e-3), inside the coarse fluid near the top crossing, is moved to 2.1 mm. The
+// coarse outer row there lies at 1.9 mm, so the point is half a coarse spacing beyond the
+// surface (fill about 0.2, which the "no fluid" test, fill < 0.05, alone would keep).
+TEST(VresDroplet, BufferParticleOutsideTheDonorSurfaceIsDeleted) {
+  CaseSpec spec = load_case("droplet_vr_2d.toml", {"resolution.dp=2e-4"});
+  Simulation<2> sim(spec);
+  auto& ps = sim.level(1).ps;
+  auto nearest = [&](const Vec<2>& x) {
+    std::size_t best = ps.size();
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (ps.kind[i] == Kind::buffer && (best == ps.size() || norm(ps.pos[i] - x) < norm(ps.pos[best] - x)))
+        best = i;
+    return best;
+  };
+  const std::size_t lifted = nearest(Vec<2>{{-2.5e-4, 1.85e-3}});
+  const std::size_t kept = nearest(Vec<2>{{-2.5e-4, 1.2e-3}});
+  ASSERT_LT(lifted, ps.size());
+  ASSERT_NE(lifted, kept);
+  const std::uint64_t id_lifted = ps.id[lifted], id_kept = ps.id[kept];
+  ps.pos[lifted] = Vec<2>{{ps.pos[lifted][0], 2.1e-3}};
+  sim.set_stop_time(1e-6);
+  sim.step();
+  bool found_lifted = false, found_kept = false;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    found_lifted |= ps.id[i] == id_lifted;
+    found_kept |= ps.id[i] == id_kept;
+  }
+  EXPECT_FALSE(found_lifted);
+  EXPECT_TRUE(found_kept);
+}
+
 // numerics.vres_conserve_momentum and numerics.surface_tension.zero_net_force (momentum.hpp) on
 // the VR droplet (dp 2e-4 / 1e-4, 10 ms; no walls, no gravity): with both the fluid momentum
 // stays at round-off. Without them the one-sided coupling and the unequal capillary pulls of the

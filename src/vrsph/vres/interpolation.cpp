@@ -47,10 +47,13 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
   double nearest2 = 1e300;
   grid.for_each_run(c, Group::fluid, [&](std::uint32_t begin, std::uint32_t end) {
     for (std::uint32_t j = begin; j < end; ++j) {
-      if (donors.kind[j] != Kind::fluid) continue;
       const Vec<D> r = x - donors.pos[j];
       const double r2 = norm2(r);
       if (r2 >= kernel.support2) continue;
+      if (donors.kind[j] != Kind::fluid) {  // buffer: counted in the fill only
+        out.shepard_buffer += donors.mass[j] / donors.rho[j] * kernel.w(std::sqrt(r2));
+        continue;
+      }
       nearest2 = std::min(nearest2, r2);
       s.add(r, r2, donors.mass[j] / donors.rho[j], donors.rho[j], donors.vel[j], kernel);
     }
