@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "vrsph/analysis/laplace.hpp"
 #include "vrsph/output/line_profile.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/solver/simulation.hpp"
@@ -24,6 +25,17 @@ std::vector<LineSample<D>> sample_levels(const Simulation<D>& sim, const OutputL
     return a.s < b.s || (a.s == b.s && a.id < b.id);
   });
   return all;
+}
+
+// The Laplace error (analysis/laplace.hpp) on a line over all levels, leaving out 2h of the level
+// found at each end of the line (summary.json's `laplace`; series.csv's laplace columns).
+template <int D>
+LaplaceError levels_laplace_error(const Simulation<D>& sim, const OutputLine& line,
+                                  double expected) {
+  const auto samples = sample_levels(sim, line);
+  const double h_first = samples.empty() ? 0.0 : sim.level(samples.front().level).prm.h;
+  const double h_last = samples.empty() ? 0.0 : sim.level(samples.back().level).prm.h;
+  return laplace_error<D>(samples, expected, h_first, h_last);
 }
 
 }  // namespace vrsph

@@ -82,13 +82,10 @@ std::vector<std::string> extra_columns(const CaseSpec& spec) {
   return c;
 }
 
-// The Laplace error on the first line (summary.json's `laplace`), 2h of the level at each end.
+// The Laplace error on the first line (summary.json's `laplace`).
 template <int D>
 LaplaceError first_line_laplace(const Simulation<D>& sim, const CaseSpec& spec) {
-  const auto samples = sample_levels(sim, spec.lines.front());
-  const double h_first = samples.empty() ? 0.0 : sim.level(samples.front().level).prm.h;
-  const double h_last = samples.empty() ? 0.0 : sim.level(samples.back().level).prm.h;
-  return laplace_error<D>(samples, *spec.laplace_pressure, h_first, h_last);
+  return levels_laplace_error(sim, spec.lines.front(), *spec.laplace_pressure);
 }
 
 }  // namespace
