@@ -53,6 +53,7 @@ shifting = { model = "skillen", coefficient = 1.5, surface_threshold = 1.4 }
 surface_tension = { lambda_threshold = 0.75, normal_epsilon = 0.11, surface_offset = true, curvature_correction = true }
 hydrostatic_initial_density = false
 vres_conserve_momentum = true
+vres_buffer_fill_min = 0.3
 [[fluid_block]]
 shape = "circle"
 center = [0.001, -0.0005]
@@ -230,6 +231,7 @@ TEST(CaseParser, RoundTripEveryKey) {
   EXPECT_EQ(r.curvature_correction, s.curvature_correction);
   EXPECT_EQ(r.zero_net_surface_force, s.zero_net_surface_force);
   EXPECT_EQ(r.vres_conserve_momentum, s.vres_conserve_momentum);
+  EXPECT_EQ(r.vres_buffer_fill_min, s.vres_buffer_fill_min);
   EXPECT_EQ(r.hydrostatic_initial_density, s.hydrostatic_initial_density);
   EXPECT_EQ(r.fluid_blocks, s.fluid_blocks);
   EXPECT_EQ(r.wall_blocks, s.wall_blocks);
@@ -250,6 +252,7 @@ TEST(CaseParser, RoundTripEveryKey) {
   EXPECT_FALSE(s.write_vtp);
   EXPECT_TRUE(s.curvature_correction);
   EXPECT_TRUE(s.vres_conserve_momentum);
+  EXPECT_EQ(s.vres_buffer_fill_min, 0.3);
 }
 
 // zero_net_force is for closed free surfaces: it round-trips on a drop and is refused with walls
@@ -324,6 +327,8 @@ TEST(CaseParser, ImpossibleValues) {
                   {"refinement.0.dp_ratio = 1", ">= 2"});
   expect_contains(error_of(m + "[[refinement]]\nmin = [0, 0]\nmax = [1, 1]\nbuffer_width = 0\n"),
                   {"refinement.0.buffer_width", "> 0"});
+  expect_contains(error_of(m + "[numerics]\nvres_buffer_fill_min = 0.5\n"),
+                  {"numerics.vres_buffer_fill_min = 0.5", "[0, 0.5)", "free surface"});
 }
 
 TEST(CaseParser, MissingRequiredKeys) {

@@ -220,37 +220,42 @@ TEST(VresDroplet, CurvatureAtTheCrossingsMatchesTheRestOfTheSurface) {
 }
 
 // A buffer particle carried outside the donor level's free surface (donor fill below
-// kVresBufferFillMin = 0.4) is deleted when the buffers are next interpolated; one inside the
-// fluid is kept. The VR droplet at dp 2e-4 / 1e-4: the fine buffer particle nearest to
+// numerics.vres_buffer_fill_min) is deleted when the buffers are next interpolated; one inside
+// the fluid is kept. The VR droplet at dp 2e-4 / 1e-4: the fine buffer particle nearest to
 // (-2.5e-4, 1.85e-3), inside the coarse fluid near the top crossing, is moved to 2.1 mm. The
 // coarse outer row there lies at 1.9 mm, so the point is half a coarse spacing beyond the
-// surface (fill about 0.2, which the "no fluid" test, fill < 0.05, alone would keep).
+// surface (fill about 0.2, which the "no fluid" test, Shepard sum < 0.05, alone would keep:
+// with vres_buffer_fill_min = 0 the lifted particle stays).
 TEST(VresDroplet, BufferParticleOutsideTheDonorSurfaceIsDeleted) {
-  CaseSpec spec = load_case("droplet_vr_2d.toml", {"resolution.dp=2e-4"});
-  Simulation<2> sim(spec);
-  auto& ps = sim.level(1).ps;
-  auto nearest = [&](const Vec<2>& x) {
-    std::size_t best = ps.size();
-    for (std::size_t i = 0; i < ps.size(); ++i)
-      if (ps.kind[i] == Kind::buffer && (best == ps.size() || norm(ps.pos[i] - x) < norm(ps.pos[best] - x)))
-        best = i;
-    return best;
-  };
-  const std::size_t lifted = nearest(Vec<2>{{-2.5e-4, 1.85e-3}});
-  const std::size_t kept = nearest(Vec<2>{{-2.5e-4, 1.2e-3}});
-  ASSERT_LT(lifted, ps.size());
-  ASSERT_NE(lifted, kept);
-  const std::uint64_t id_lifted = ps.id[lifted], id_kept = ps.id[kept];
-  ps.pos[lifted] = Vec<2>{{ps.pos[lifted][0], 2.1e-3}};
-  sim.set_stop_time(1e-6);
-  sim.step();
-  bool found_lifted = false, found_kept = false;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    found_lifted |= ps.id[i] == id_lifted;
-    found_kept |= ps.id[i] == id_kept;
+  for (const double fill_min : {0.0, 0.25}) {
+    CaseSpec spec = load_case("droplet_vr_2d.toml", {"resolution.dp=2e-4"});
+    spec.vres_buffer_fill_min = fill_min;
+    Simulation<2> sim(spec);
+    auto& ps = sim.level(1).ps;
+    auto nearest = [&](const Vec<2>& x) {
+      std::size_t best = ps.size();
+      for (std::size_t i = 0; i < ps.size(); ++i)
+        if (ps.kind[i] == Kind::buffer &&
+            (best == ps.size() || norm(ps.pos[i] - x) < norm(ps.pos[best] - x)))
+          best = i;
+      return best;
+    };
+    const std::size_t lifted = nearest(Vec<2>{{-2.5e-4, 1.85e-3}});
+    const std::size_t kept = nearest(Vec<2>{{-2.5e-4, 1.2e-3}});
+    ASSERT_LT(lifted, ps.size());
+    ASSERT_NE(lifted, kept);
+    const std::uint64_t id_lifted = ps.id[lifted], id_kept = ps.id[kept];
+    ps.pos[lifted] = Vec<2>{{ps.pos[lifted][0], 2.1e-3}};
+    sim.set_stop_time(1e-6);
+    sim.step();
+    bool found_lifted = false, found_kept = false;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      found_lifted |= ps.id[i] == id_lifted;
+      found_kept |= ps.id[i] == id_kept;
+    }
+    EXPECT_EQ(found_lifted, fill_min == 0.0) << "vres_buffer_fill_min " << fill_min;
+    EXPECT_TRUE(found_kept) << "vres_buffer_fill_min " << fill_min;
   }
-  EXPECT_FALSE(found_lifted);
-  EXPECT_TRUE(found_kept);
 }
 
 // numerics.vres_conserve_momentum and numerics.surface_tension.zero_net_force (momentum.hpp) on

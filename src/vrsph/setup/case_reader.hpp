@@ -37,6 +37,8 @@ inline constexpr Check kPositive{[](double v) { return v > 0.0; }, "must be > 0"
 inline constexpr Check kNonNegative{[](double v) { return v >= 0.0; }, "must be >= 0"};
 inline constexpr Check kUnitClosed{[](double v) { return v >= 0.0 && v <= 1.0; },
                                    "must be in [0, 1]"};
+inline constexpr Check kBelowHalf{[](double v) { return v >= 0.0 && v < 0.5; },
+                                  "must be in [0, 0.5) (0.5 is the fill on a free surface)"};
 inline constexpr Check kUnitHalfOpen{[](double v) { return v > 0.0 && v <= 1.0; },
                                      "must be in (0, 1]"};
 

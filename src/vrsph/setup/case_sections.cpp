@@ -24,7 +24,8 @@ constexpr std::string_view kEosKeys[] = {"gamma", "max_speed", "sound_speed_fact
 constexpr std::string_view kResolutionKeys[] = {"dp", "h_over_dp"};
 constexpr std::string_view kNumericsKeys[] = {
     "cfl",      "viscosity",       "density_diffusion",
-    "shifting", "surface_tension", "hydrostatic_initial_density", "vres_conserve_momentum"};
+    "shifting", "surface_tension", "hydrostatic_initial_density", "vres_conserve_momentum",
+    "vres_buffer_fill_min"};
 constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
 constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
@@ -143,6 +144,8 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
   spec.zero_net_surface_force = st.opt_bool("zero_net_force").value_or(spec.zero_net_surface_force);
   spec.vres_conserve_momentum =
       r.opt_bool("vres_conserve_momentum").value_or(spec.vres_conserve_momentum);
+  spec.vres_buffer_fill_min =
+      r.opt_number("vres_buffer_fill_min", kBelowHalf).value_or(spec.vres_buffer_fill_min);
   spec.hydrostatic_initial_density =
       r.opt_bool("hydrostatic_initial_density").value_or(spec.hydrostatic_initial_density);
 }

@@ -98,6 +98,8 @@ void write_numerics(Writer& w, const CaseSpec& s) {
                    s.zero_net_surface_force ? "true" : "false"));
   w.kv("hydrostatic_initial_density", s.hydrostatic_initial_density ? "true" : "false");
   w.kv("vres_conserve_momentum", s.vres_conserve_momentum ? "true" : "false");
+  w.kv("vres_buffer_fill_min", num(s.vres_buffer_fill_min),
+       "donor fill below which a buffer particle is deleted (0.5 on a free surface)");
 }
 
 // [[fluid_block]] and [[wall_block]].

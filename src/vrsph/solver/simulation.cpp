@@ -366,7 +366,7 @@ void Simulation<D>::couple_levels(double dt) {
   accumulate_and_create(levels_, dt, counters_.next_id, tally);
   for (Level<D>& L : levels_) update_kinds(L, tally);
   sort_all();
-  if (interpolate_buffers(levels_, tally) > 0) sort_all();
+  if (interpolate_buffers(levels_, tally, spec_.vres_buffer_fill_min) > 0) sort_all();
   if (conserve) {  // momentum.hpp: the jump dP_c of the kind changes, as a uniform velocity
     const Vec<D> dp = fluid_momentum(mass) - p_before;
     if (mass > 0.0) add_to_fluid(levels_, dp * (-1.0 / mass), true);

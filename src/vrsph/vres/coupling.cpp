@@ -101,7 +101,8 @@ void update_kinds(Level<D>& L, CouplingTally& tally) {
 }
 
 template <int D>
-std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally) {
+std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally,
+                                double fill_min) {
   std::size_t removed_all = 0;
   for (Level<D>& L : levels) {
     ParticleSet<D>& ps = L.ps;
@@ -122,7 +123,7 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& ta
       // the level's surface stands proud where it crosses the interface (2D VR droplet: fine
       // buffer particles one coarse spacing above the coarse surface from 0.26 s, the fine fluid
       // next to them 0.07 mm above the circle, and the drop's pressure 3-5% low).
-      if (s.shepard < kVresShepardMin || donor_fill(s) < kVresBufferFillMin) {
+      if (s.shepard < kVresShepardMin || donor_fill(s) < fill_min) {
         keep[i] = 0;
         ++removed;
         continue;
@@ -145,7 +146,7 @@ template void accumulate_and_create<3>(std::vector<Level<3>>&, double, std::uint
                                        CouplingTally&);
 template void update_kinds<2>(Level<2>&, CouplingTally&);
 template void update_kinds<3>(Level<3>&, CouplingTally&);
-template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&, CouplingTally&);
-template std::size_t interpolate_buffers<3>(std::vector<Level<3>>&, CouplingTally&);
+template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&, CouplingTally&, double);
+template std::size_t interpolate_buffers<3>(std::vector<Level<3>>&, CouplingTally&, double);
 
 }  // namespace vrsph

@@ -1,20 +1,22 @@
 // Coupling of resolution levels after each step (PHYSICS.md section 5; Ricci, Vacondio & Tafuni
 // 2024, as DualSPHysics' VRes does it):
 //  1. mass points on the outer face of each buffer accumulate the mass the other level's flow
-//     carries into the buffer, dm = -rho (u . n) dA dt, where the point lies inside the fluid
-//     (div r > the free-surface threshold); a stored mass above one particle mass creates a
-//     buffer particle 0.5 dp inside the face;
+//     carries into the buffer, dm = -rho (u . n) dA dt times the donor's smoothed fill (about 1
+//     inside the fluid, 1/2 on its free surface, 0 outside); a stored mass above one particle
+//     mass creates a buffer particle 0.5 dp inside the face;
 //  2. kinds follow positions: fluid entering its level's buffer becomes buffer, buffer entering
 //     the fluid region becomes fluid, anything leaving the level's region is deleted;
 //  3. every buffer particle takes rho and v from the other level's fluid by first-order
 //     corrected interpolation (vres/interpolation.hpp), and is deleted where that level has
-//     no fluid (Shepard sum < 0.05).
+//     no fluid (Shepard sum < 0.05) or where it lies outside that level's free surface (donor
+//     fill below numerics.vres_buffer_fill_min, default kVresBufferFillMin).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "vrsph/solver/level.hpp"
+#include "vrsph/vres/interpolation.hpp"
 
 namespace vrsph {
 
@@ -38,6 +40,7 @@ void update_kinds(Level<D>& L, CouplingTally& tally);
 // Step 3 for all levels (needs sorted levels). Returns the number of deleted buffer particles
 // (the levels must then be re-sorted).
 template <int D>
-std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally);
+std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally,
+                                double fill_min = kVresBufferFillMin);
 
 }  // namespace vrsph
