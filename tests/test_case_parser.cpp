@@ -162,6 +162,7 @@ TEST(CaseParser, MinimalCaseGetsPhysicsDefaults) {
   EXPECT_DOUBLE_EQ(s.shifting_surface_threshold, 1.5);
   EXPECT_DOUBLE_EQ(s.lambda_threshold, 0.7);
   EXPECT_DOUBLE_EQ(s.normal_epsilon, 0.1);
+  EXPECT_DOUBLE_EQ(s.vres_buffer_fill_min, 0.0);  // Ricci et al.'s rule only
   EXPECT_TRUE(s.hydrostatic_initial_density);
   ASSERT_EQ(s.fluid_blocks.size(), 1u);
   EXPECT_EQ(s.fluid_blocks[0].shape, BlockShape::circle);

@@ -96,7 +96,7 @@ struct CaseSpec {
   bool curvature_correction = false;  // stencil-consistent curvature (not Cen)
   bool zero_net_surface_force = false;  // remove the net capillary force (closed surfaces; not Cen)
   bool vres_conserve_momentum = false;  // remove the coupling's net force and momentum jumps
-  double vres_buffer_fill_min = 0.4;    // buffer particles below this donor fill are deleted
+  double vres_buffer_fill_min = 0.0;    // buffer particles below this donor fill are deleted
   bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
 
   // geometry

@@ -117,12 +117,13 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& ta
       const Level<D>& donor = levels[static_cast<std::size_t>(z.donor)];
       const InterpolatedState<D> s =
           interpolate_from_level<D>(ps.pos[i], donor.ps, donor.grid, donor.prm.kernel);
-      // No donor fluid in reach, or outside the donor's free surface (donor_fill below
-      // kVresBufferFillMin). Buffer particles follow the donor's velocity and nothing pulls them
-      // back to its surface: without the second test, those carried beyond it stay there, and
-      // the level's surface stands proud where it crosses the interface (2D VR droplet: fine
-      // buffer particles one coarse spacing above the coarse surface from 0.26 s, the fine fluid
-      // next to them 0.07 mm above the circle, and the drop's pressure 3-5% low).
+      // No donor fluid in reach, or (numerics.vres_buffer_fill_min > 0, not part of Ricci et
+      // al.) outside the donor's free surface. Buffer particles follow the donor's velocity and
+      // nothing pulls them back to its surface: without the second test, those carried beyond
+      // it stay there, and the level's surface can stand proud where it crosses the interface
+      // (2D VR droplet: fine buffer particles one coarse spacing above the coarse surface from
+      // 0.26 s, the fine fluid next to them 0.07 mm above the circle, the drop's pressure 3-5%
+      // low). On the relaxing square drop the same test dented the top crossing instead.
       if (s.shepard < kVresShepardMin || donor_fill(s) < fill_min) {
         keep[i] = 0;
         ++removed;

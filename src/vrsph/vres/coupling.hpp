@@ -9,14 +9,13 @@
 //  3. every buffer particle takes rho and v from the other level's fluid by first-order
 //     corrected interpolation (vres/interpolation.hpp), and is deleted where that level has
 //     no fluid (Shepard sum < 0.05) or where it lies outside that level's free surface (donor
-//     fill below numerics.vres_buffer_fill_min, default kVresBufferFillMin).
+//     fill below numerics.vres_buffer_fill_min; 0, the default, turns that test off).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "vrsph/solver/level.hpp"
-#include "vrsph/vres/interpolation.hpp"
 
 namespace vrsph {
 
@@ -41,6 +40,6 @@ void update_kinds(Level<D>& L, CouplingTally& tally);
 // (the levels must then be re-sorted).
 template <int D>
 std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally,
-                                double fill_min = kVresBufferFillMin);
+                                double fill_min);
 
 }  // namespace vrsph

@@ -71,11 +71,11 @@ inline constexpr double kVresCondLimit = 100.0;   // above: Shepard fallback
 // sums to about 1/2). About 1 inside the fluid, it falls through 1/2 at a free surface: on a flat
 // lattice face (h = 1.3 dp) it is 0.66, 0.50 and 0.35 at dp/4 inside, on and dp/4 outside the
 // plane dp/2 beyond the outer row. Below 1/2 a point lies outside the donor's fluid.
-// Buffer particles are deleted below kVresBufferFillMin, a little outside the surface: the outer
-// buffer row of a finer level sits at about 0.66 and its fill moves with the particle disorder,
-// and deleting at 1/2 (with creation also restricted to fill >= 1/2) stirred the VR droplet
-// (largest speed 0.02-0.11 m/s against 0.002-0.006 m/s).
-inline constexpr double kVresBufferFillMin = 0.4;
+// With numerics.vres_buffer_fill_min > 0, buffer particles are deleted below that fill (0.4 in
+// cases/droplet_vr_2d.toml, a little outside the surface): the outer buffer row of a finer level
+// sits at about 0.66 and its fill moves with the particle disorder, and deleting at 1/2 (with
+// creation also restricted to fill >= 1/2) stirred the VR droplet (largest speed 0.02-0.11 m/s
+// against 0.002-0.006 m/s).
 
 template <int D>
 inline double donor_fill(const InterpolatedState<D>& s) {
