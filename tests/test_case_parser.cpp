@@ -360,6 +360,8 @@ TEST(CaseParser, BadEnumsAndShapes) {
   expect_contains(error_of(m + "[[fluid_block]]\nshape = \"box\"\nmin = [0, 0]\nmax = [1, 1]\n"
                                "fill = \"rings\"\n"),
                   {"fluid_block.1.fill", "circle"});
+  expect_contains(error_of(edited("radius = 0.002", "radius = 0.002\nfill = \"cells\"")),
+                  {"fluid_block.0.fill = \"cells\"", "box"});
   expect_contains(error_of(m + "[[output.line]]\nname = \"a b\"\nfrom = [0, 0]\nto = [1, 0]\n"),
                   {"output.line.0.name = \"a b\"", "[A-Za-z0-9_-]+"});
 }

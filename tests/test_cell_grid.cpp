@@ -333,6 +333,39 @@ TEST(CellGridGeometry, DamBreakBenchmarkGeometry) {
   EXPECT_GE(min_distance(ps, 0.005), 0.99 * 0.005);
 }
 
+// fill = "cells": the centres of the dp cells of the box, so the box is the fluid's volume at
+// any spacing (a refinement level fills the same box at its own dp). A 4 mm square at 1e-4 and
+// 5e-5 m: 40 x 40 and 80 x 80 particles, outer rows dp/2 inside each face, centred on the box.
+TEST(CellGridGeometry, CellsFillTheBoxAtEverySpacing) {
+  for (const double dp : {1e-4, 5e-5}) {
+    CaseSpec s = geometry_spec(2, dp);
+    FluidBlock f;
+    f.shape = BlockShape::box;
+    f.fill = FillMode::cells;
+    f.min = {-0.002, -0.002, 0.0};
+    f.max = {0.002, 0.002, 0.0};
+    s.fluid_blocks = {f};
+    const InitialSet<2> init = build_particles<2>(s);
+    const ParticleSet<2>& ps = init.particles;
+    const auto n = static_cast<std::size_t>(std::lround(0.004 / dp));
+    ASSERT_EQ(ps.size(), n * n) << "dp " << dp;
+    Vec<2> lo{{1.0, 1.0}}, hi{{-1.0, -1.0}}, sum{};
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      for (int k = 0; k < 2; ++k) {
+        lo[k] = std::min(lo[k], ps.pos[i][k]);
+        hi[k] = std::max(hi[k], ps.pos[i][k]);
+        sum[k] += ps.pos[i][k];
+      }
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(lo[k], -0.002 + 0.5 * dp, 1e-12) << "dp " << dp;
+      EXPECT_NEAR(hi[k], 0.002 - 0.5 * dp, 1e-12) << "dp " << dp;
+      EXPECT_NEAR(sum[k] / static_cast<double>(ps.size()), 0.0, 1e-12) << "dp " << dp;
+    }
+    EXPECT_NEAR(init.fluid_height, 0.004, 1e-15);
+    EXPECT_GE(min_distance(ps, dp), 0.99 * dp);
+  }
+}
+
 TEST(CellGridGeometry, CircleFillsHaveTheCircleArea) {
   const double dp = 1e-4, r = 0.002;
   const Vec3d centre{0.01, -0.003, 0.0};

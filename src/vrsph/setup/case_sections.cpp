@@ -172,6 +172,8 @@ FluidBlock parse_fluid_block(const TableReader& r, const CaseSpec& spec) {
   b.fill = r.opt_enum("fill", kFillNames).value_or(b.fill);
   r.require("fill", b.fill != FillMode::rings || b.shape == BlockShape::circle,
             "\"rings\" needs shape = \"circle\" (2D only)");
+  r.require("fill", b.fill != FillMode::cells || b.shape == BlockShape::box,
+            "\"cells\" needs shape = \"box\"");
   b.velocity = r.opt_vector("velocity", dim).value_or(Vec3d{});
   b.pressure = r.opt_number("pressure").value_or(0.0);
   return b;

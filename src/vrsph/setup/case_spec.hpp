@@ -17,7 +17,10 @@ enum class ViscosityModel { laminar, artificial };
 enum class DiffusionModel { none, molteni, fourtakas };
 enum class ShiftingModel { none, lind, skillen };
 enum class BlockShape { circle, sphere, box };
-enum class FillMode { lattice, rings };
+// lattice: nodes from min (box) or a lattice centred on the centre (round shapes), every dp;
+// rings: concentric rings (circles); cells: the centres of the dp cells that tile a box, so its
+// faces lie dp/2 beyond the outer rows at every resolution level.
+enum class FillMode { lattice, rings, cells };
 enum class WallShape { tank, box };
 
 struct FluidBlock {

@@ -29,6 +29,19 @@ void for_each_node(const Vec<D>& min, const Vec<D>& max, double dp, Fn&& fn) {
       }
 }
 
+// The centres of the dp cells that tile [min, max] (a box whose sides are not whole multiples of
+// dp keeps the whole cells that fit, from min): min + (k + 1/2) dp while inside.
+template <int D, class Fn>
+void for_each_cell_centre(const Vec<D>& min, const Vec<D>& max, double dp, Fn&& fn) {
+  Vec<D> lo = min, hi = max;
+  for (int k = 0; k < D; ++k) {
+    lo[k] += 0.5 * dp;
+    hi[k] -= 0.5 * dp;
+    if (hi[k] < lo[k] - 1e-9 * dp) return;  // thinner than one cell: nothing to fill
+  }
+  for_each_node<D>(lo, hi, dp, fn);
+}
+
 template <int D, class Fn>
 void fill_ball_lattice(const Vec<D>& c, double radius, double dp, Fn&& fn) {
   const long m = static_cast<long>(std::ceil(radius / dp)) + 1;
@@ -107,7 +120,11 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
       ps.push_back(next_id++, Kind::fluid, x, v, spec.density, mass);
       out.initial_pressure.push_back(b.pressure);
     };
-    if (b.shape == BlockShape::box) {
+    if (b.shape == BlockShape::box && b.fill == FillMode::cells) {
+      for_each_cell_centre<D>(to_vec<D>(b.min), to_vec<D>(b.max), dp, add);
+      zmin = std::min(zmin, b.min[vert]);
+      zmax = std::max(zmax, b.max[vert]);
+    } else if (b.shape == BlockShape::box) {
       for_each_node<D>(to_vec<D>(b.min), to_vec<D>(b.max), dp, add);
       zmin = std::min(zmin, b.min[vert]);
       zmax = std::max(zmax, b.max[vert]);
