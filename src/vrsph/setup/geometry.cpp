@@ -1,5 +1,6 @@
 #include "vrsph/setup/geometry.hpp"
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -13,7 +14,11 @@ long steps_between(double a, double b, double dp) {
   return static_cast<long>(std::floor((b - a) / dp + 1e-6));
 }
 
-// Calls fn(x) for every lattice node min + k dp with x <= max on each axis.
+// Calls fn(x) for every lattice node min + k dp with x <= max on each axis. Each coordinate is
+// min + k dp rounded once (std::fma), so it does not depend on whether the compiler contracts the
+// product and sum: nodes meant to lie on a refinement box's face (a half-open box) must land on
+// the same side in every build. Rounded twice, 0.01 + 9 x 0.01 gives 0.09999999999999999 and a
+// fine level's first row fell outside its box (VresStillTank lost 1% of its fluid).
 template <int D, class Fn>
 void for_each_node(const Vec<D>& min, const Vec<D>& max, double dp, Fn&& fn) {
   std::array<long, 3> n{1, 1, 1};
@@ -21,10 +26,10 @@ void for_each_node(const Vec<D>& min, const Vec<D>& max, double dp, Fn&& fn) {
   for (long c = 0; c < (D == 3 ? n[2] : 1); ++c)
     for (long b = 0; b < n[1]; ++b)
       for (long a = 0; a < n[0]; ++a) {
-        Vec<D> x = min;
-        x[0] += a * dp;
-        x[1] += b * dp;
-        if constexpr (D == 3) x[2] += c * dp;
+        const std::array<long, 3> step{a, b, c};
+        Vec<D> x;
+        for (int k = 0; k < D; ++k)
+          x[k] = std::fma(static_cast<double>(step[static_cast<std::size_t>(k)]), dp, min[k]);
         fn(x);
       }
 }
