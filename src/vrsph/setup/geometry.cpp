@@ -125,12 +125,10 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
       ps.push_back(next_id++, Kind::fluid, x, v, spec.density, mass);
       out.initial_pressure.push_back(b.pressure);
     };
-    if (b.shape == BlockShape::box && b.fill == FillMode::cells) {
-      for_each_cell_centre<D>(to_vec<D>(b.min), to_vec<D>(b.max), dp, add);
-      zmin = std::min(zmin, b.min[vert]);
-      zmax = std::max(zmax, b.max[vert]);
-    } else if (b.shape == BlockShape::box) {
-      for_each_node<D>(to_vec<D>(b.min), to_vec<D>(b.max), dp, add);
+    if (b.shape == BlockShape::box) {
+      const Vec<D> lo = to_vec<D>(b.min), hi = to_vec<D>(b.max);
+      if (b.fill == FillMode::cells) for_each_cell_centre<D>(lo, hi, dp, add);
+      else for_each_node<D>(lo, hi, dp, add);
       zmin = std::min(zmin, b.min[vert]);
       zmax = std::max(zmax, b.max[vert]);
     } else {
