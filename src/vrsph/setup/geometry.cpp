@@ -35,14 +35,14 @@ void for_each_node(const Vec<D>& min, const Vec<D>& max, double dp, Fn&& fn) {
 }
 
 // The centres of the dp cells that tile [min, max] (a box whose sides are not whole multiples of
-// dp keeps the whole cells that fit, from min): min + (k + 1/2) dp while inside.
+// dp keeps the whole cells that fit, from min): the nodes of [min, max] shrunk by dp/2 on every
+// face. A box thinner than one cell shrinks to an empty range, where for_each_node makes no node.
 template <int D, class Fn>
 void for_each_cell_centre(const Vec<D>& min, const Vec<D>& max, double dp, Fn&& fn) {
   Vec<D> lo = min, hi = max;
   for (int k = 0; k < D; ++k) {
     lo[k] += 0.5 * dp;
     hi[k] -= 0.5 * dp;
-    if (hi[k] < lo[k] - 1e-9 * dp) return;  // thinner than one cell: nothing to fill
   }
   for_each_node<D>(lo, hi, dp, fn);
 }
