@@ -395,6 +395,68 @@ TEST(CellGridGeometry, CircleFillsHaveTheCircleArea) {
   }
 }
 
+// Longest run of neighbouring rings k, k+1, ... that each have a particle on one common ray
+// (each within 0.1 dp of arc of the previous ring's particle), for a ring fill centred at the origin.
+std::size_t longest_radial_chain(const std::vector<Vec<2>>& pos, double dp) {
+  std::vector<std::vector<double>> ring;  // sorted angles per ring index
+  for (const auto& x : pos) {
+    const auto k = static_cast<std::size_t>(std::lround(norm(x) / dp - 0.5));
+    if (ring.size() <= k) ring.resize(k + 1);
+    ring[k].push_back(std::atan2(x[1], x[0]));
+  }
+  for (auto& a : ring) std::sort(a.begin(), a.end());
+  // The angle of ring `a` (sorted, in [-pi, pi]) nearest to `th`.
+  const auto nearest = [](const std::vector<double>& a, double th) {
+    const auto it = std::lower_bound(a.begin(), a.end(), th);
+    const double up = it == a.end() ? a.front() + 2.0 * std::numbers::pi : *it;
+    const double down = it == a.begin() ? a.back() - 2.0 * std::numbers::pi : *(it - 1);
+    return up - th < th - down ? up : down;
+  };
+  std::size_t longest = 0;
+  for (std::size_t k = 0; k < ring.size(); ++k) {
+    for (double th : ring[k]) {
+      std::size_t len = 1;
+      while (k + len < ring.size()) {
+        const double next = nearest(ring[k + len], th);
+        if (std::abs(next - th) * ((k + len + 0.5) * dp) >= 0.1 * dp) break;
+        th = next;
+        ++len;
+      }
+      longest = std::max(longest, len);
+    }
+  }
+  return longest;
+}
+
+// Were all rings started at theta = 0, every ring would have a particle on the +x ray (a chain
+// of R/dp rings), a seam that seeds the drop's shape modes (geometry.cpp). The golden turn of
+// each ring leaves only short accidental alignments.
+TEST(CellGridGeometry, RingFillHasNoRadialSeam) {
+  const double dp = 2e-5, r = 0.002;  // the poster's finer droplet: 100 rings
+  CaseSpec s = geometry_spec(2, dp);
+  FluidBlock f;
+  f.shape = BlockShape::circle;
+  f.center = {0.0, 0.0, 0.0};
+  f.radius = r;
+  f.fill = FillMode::rings;
+  s.fluid_blocks = {f};
+  const ParticleSet<2> ps = build_particles<2>(s).particles;
+  const std::size_t chain = longest_radial_chain(ps.pos, dp);
+  std::printf("[ geometry ] rings at R/dp = 100: longest radially aligned chain %zu rings\n", chain);
+  EXPECT_LE(chain, 6u);
+  // The check itself sees a seam: a fill with every ring started at theta = 0.
+  std::vector<Vec<2>> seam;
+  for (long k = 0; k < 100; ++k) {
+    const double rk = (k + 0.5) * dp;
+    const long n = std::max(1L, std::lround(2.0 * std::numbers::pi * rk / dp));
+    for (long q = 0; q < n; ++q) {
+      const double th = 2.0 * std::numbers::pi * q / n;
+      seam.push_back(Vec<2>{{rk * std::cos(th), rk * std::sin(th)}});
+    }
+  }
+  EXPECT_EQ(longest_radial_chain(seam, dp), 100u);
+}
+
 TEST(CellGridGeometry, SphereAndTank3DHaveNoDuplicates) {
   const double dp = 0.01;
   CaseSpec s = geometry_spec(3, dp);
