@@ -419,7 +419,7 @@ std::size_t longest_radial_chain(const std::vector<Vec<2>>& pos, double dp) {
       while (k + len < ring.size()) {
         const double next = nearest(ring[k + len], th);
         if (std::abs(next - th) * ((k + len + 0.5) * dp) >= 0.1 * dp) break;
-        th = next;
+        th = std::remainder(next, 2.0 * std::numbers::pi);  // back into [-pi, pi] after a wrap
         ++len;
       }
       longest = std::max(longest, len);
@@ -429,8 +429,8 @@ std::size_t longest_radial_chain(const std::vector<Vec<2>>& pos, double dp) {
 }
 
 // Were all rings started at theta = 0, every ring would have a particle on the +x ray (a chain
-// of R/dp rings), a seam that seeds the drop's shape modes (geometry.cpp). The golden turn of
-// each ring leaves only short accidental alignments.
+// of R/dp rings), a seam that seeds the drop's shape modes (geometry.cpp). The quadratic turn
+// frac(k^2 g) of each ring leaves only short accidental alignments.
 TEST(CellGridGeometry, RingFillHasNoRadialSeam) {
   const double dp = 2e-5, r = 0.002;  // the poster's finer droplet: 100 rings
   CaseSpec s = geometry_spec(2, dp);
