@@ -1,12 +1,12 @@
 // `vrsph check` (set-up report without a run) and `vrsph bench` (timed run without outputs).
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 
 #include "vrsph/driver/run.hpp"
+#include "vrsph/exec/parallel.hpp"
 #include "vrsph/output/summary.hpp"
 #include "vrsph/solver/simulation.hpp"
 
@@ -52,7 +52,7 @@ template <int D>
 int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   spec.end_time = opt.sim_time;
   Simulation<D> sim(spec, opt.cells_per_support);
-  const int threads = omp_get_max_threads();
+  const int threads = exec::thread_count();
   const auto t0 = std::chrono::steady_clock::now();
   while (sim.time() < opt.sim_time * (1 - 1e-9)) sim.step();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -75,14 +75,12 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
                      {"update", t.update / wall}, {"checks", t.checks / wall},
                      {"other", std::max(0.0, wall - accounted) / wall}};
   j["cells_per_support"] = opt.cells_per_support;
-  const double anchor = 1.54e6;  // DualSPHysics 5.4 CPU, 2 threads, same case and machine type
-  j["ratio_to_dualsphysics"] = c.particle_steps / wall / anchor;
   fmt::print("bench {}: {} particles, {} steps to t = {:g} s on {} thread(s) in {:.2f} s\n",
              spec.name, sim.total_particles(), sim.step_count(), sim.time(), threads, wall);
-  fmt::print("  {:.3f} M particle-steps/s ({:.2f}x DualSPHysics' 1.54 M), {:.1f} M pair "
-             "interactions/s, {:.1f} steps/s\n",
-             c.particle_steps / wall / 1e6, c.particle_steps / wall / anchor, c.pairs / wall / 1e6,
-             sim.step_count() / wall);
+  // A speed means something only against another code run on the same machine (see
+  // docs/validation.md), so no ratio to a figure taken elsewhere is printed.
+  fmt::print("  {:.3f} M particle-steps/s, {:.1f} M pair interactions/s, {:.1f} steps/s\n",
+             c.particle_steps / wall / 1e6, c.pairs / wall / 1e6, sim.step_count() / wall);
   fmt::print("  time per pass: forces {:.1f}%, surface {:.1f}%, sort {:.1f}%, update {:.1f}%, "
              "checks {:.1f}%, other {:.1f}%\n",
              100 * t.forces / wall, 100 * t.surface / wall, 100 * t.sort / wall, 100 * t.update / wall,
@@ -99,7 +97,7 @@ int check_case(CaseSpec spec) {
 }
 
 int bench_case(CaseSpec spec, const BenchOptions& opt) {
-  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  if (opt.threads > 0) exec::set_thread_count(opt.threads);
   return spec.dimension == 2 ? bench_impl<2>(spec, opt) : bench_impl<3>(spec, opt);
 }
 

@@ -9,9 +9,10 @@
 #include <algorithm>
 
 #include "vrsph/core/vec.hpp"
-#include "vrsph/setup/case_spec.hpp"
 
 namespace vrsph {
+
+enum class ShiftingModel { none, lind, skillen };
 
 struct ShiftingParams {
   ShiftingModel model = ShiftingModel::none;
@@ -20,6 +21,11 @@ struct ShiftingParams {
   double h = 0.0;
   double dp = 0.0;
 };
+
+// Pair contributions of the two sums, with vol_f = V_j F (grad_i W_ij = F r_ij):
+// grad C_i += V_j F r_ij (component r_a of r_ij), div r_i += -V_j F r^2.
+inline double colour_gradient_pair(double vol_f, double r_a) { return vol_f * r_a; }
+inline double position_divergence_pair(double vol_f, double r2) { return -vol_f * r2; }
 
 template <int D>
 inline Vec<D> shifting_displacement(const ShiftingParams& s, const Vec<D>& grad_c, double div_r,

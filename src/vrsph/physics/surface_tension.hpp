@@ -21,6 +21,19 @@
 
 namespace vrsph {
 
+// Pair contributions of step 1, vol_f = V_j F (grad_i W_ij = F r_ij): the entry (a, b) of M_i,
+// V_j (r_j - r_i)_a (grad_i W_ij)_b = -V_j F r_a r_b, and the Shepard sum V_j W_ij of phi_i.
+inline double correction_matrix_pair(double vol_f, double r_a, double r_b) {
+  return -vol_f * r_a * r_b;
+}
+inline double shepard_pair(double vol_j, double w) { return vol_j * w; }
+
+// Pair contribution of step 2: the factor of r_ij in (lambda_j - lambda_ref) V_j grad_i W_ij, with
+// lambda_ref = lambda_i (difference form, lambda_i >= 0.7) or 0.
+inline double lambda_gradient_pair(double lambda_j, double lambda_ref, double vol_j, double f) {
+  return (lambda_j - lambda_ref) * vol_j * f;
+}
+
 // Below this smallest eigenvalue M_i is too close to singular to invert (an isolated particle or
 // a thin filament); L_i = I is used instead.
 inline constexpr double kMinInvertibleLambda = 0.1;
@@ -44,6 +57,13 @@ inline Vec<D> normal_from_lambda_gradient(const Vec<D>& grad_lambda, double lamb
 template <int D>
 constexpr double curvature_filter_cos() {
   return D == 2 ? -0.5 : -1.0 / 3.0;
+}
+
+// S_ij of step 3: both normals non-zero and n_i . n_j >= cos(alpha_t) (n_i is checked by the
+// caller). Written as a value, not a branch, for the vector loop.
+template <int D>
+inline bool curvature_filter(double n_j_norm2, double ni_dot_nj) {
+  return (n_j_norm2 != 0.0) & (ni_dot_nj >= curvature_filter_cos<D>());
 }
 
 // Surface delta of the single-phase colour function: 2 max(1, phi) |grad C|, phi = 1/(2 shepard).

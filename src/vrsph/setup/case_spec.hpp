@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "vrsph/physics/density_diffusion.hpp"
+#include "vrsph/physics/shifting.hpp"
+#include "vrsph/physics/viscosity.hpp"
+
 namespace vrsph {
 
 using Vec3d = std::array<double, 3>;
 
-enum class ViscosityModel { laminar, artificial };
-enum class DiffusionModel { none, molteni, fourtakas };
-enum class ShiftingModel { none, lind, skillen };
 enum class BlockShape { circle, sphere, box };
 // lattice: nodes from min (box) or a lattice centred on the centre (round shapes), every dp;
 // rings: concentric rings (circles); cells: the centres of the dp cells that tile a box, so its

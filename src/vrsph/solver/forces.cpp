@@ -1,266 +1,223 @@
 #include "vrsph/solver/forces.hpp"
 
-#include <omp.h>
-
-#include <algorithm>
 #include <cmath>
 
-#include "vrsph/physics/pair_terms.hpp"
+#include "vrsph/exec/parallel.hpp"
+#include "vrsph/exec/sweep.hpp"
+#include "vrsph/particles/candidate_block.hpp"
+#include "vrsph/physics/continuity.hpp"
+#include "vrsph/physics/density_diffusion.hpp"
+#include "vrsph/physics/pressure.hpp"
+#include "vrsph/physics/viscosity.hpp"
 
 namespace vrsph {
 namespace {
 
-// Candidates of one cell's particles, copied from the runs of the cell stencil into one
-// contiguous block padded to a multiple of kPad with inert dummies (far away, zero volume and
-// mass), so that every particle of the cell sweeps a single vector loop with no remainder.
-// All particles of a cell share the block: the copy is amortised over them.
-constexpr std::size_t kPad = 8;
-
+// Columns of the force pass's candidate blocks: positions, velocities, then the scalars.
 template <int D>
-struct Candidates {
-  NeighbourArrays<D> a;
-  std::size_t len = 0;          // padded length
-  std::int64_t cell = -1;       // cell the block was gathered for
-  Group group = Group::fluid;
-
-  void gather(const NeighbourArrays<D>& nb, const CellGrid<D>& grid, std::int64_t c, Group g) {
-    if (c == cell && g == group) return;
-    cell = c;
-    group = g;
-    std::size_t n = 0;
-    grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) { n += e - b; });
-    len = (n + kPad - 1) / kPad * kPad;
-    if (a.rho.size() < len) grow(len);
-    std::size_t k = 0;
-    grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) {
-      for (int d = 0; d < D; ++d) {
-        std::copy(nb.x[d].begin() + b, nb.x[d].begin() + e, a.x[d].begin() + k);
-        std::copy(nb.v[d].begin() + b, nb.v[d].begin() + e, a.v[d].begin() + k);
-      }
-      std::copy(nb.rho.begin() + b, nb.rho.begin() + e, a.rho.begin() + k);
-      std::copy(nb.p.begin() + b, nb.p.begin() + e, a.p.begin() + k);
-      std::copy(nb.vol.begin() + b, nb.vol.begin() + e, a.vol.begin() + k);
-      std::copy(nb.mass.begin() + b, nb.mass.begin() + e, a.mass.begin() + k);
-      std::copy(nb.wall_vol.begin() + b, nb.wall_vol.begin() + e, a.wall_vol.begin() + k);
-      k += e - b;
-    });
-    for (; k < len; ++k) {  // dummies: outside every support, and zero in every term
-      for (int d = 0; d < D; ++d) {
-        a.x[d][k] = 1e15;
-        a.v[d][k] = 0.0;
-      }
-      a.rho[k] = 1.0;
-      a.p[k] = 0.0;
-      a.vol[k] = 0.0;
-      a.mass[k] = 0.0;
-      a.wall_vol[k] = 0.0;
-    }
-  }
-
-  void grow(std::size_t n) {
-    for (int d = 0; d < D; ++d) {
-      a.x[d].resize(n);
-      a.v[d].resize(n);
-    }
-    a.rho.resize(n);
-    a.p.resize(n);
-    a.vol.resize(n);
-    a.mass.resize(n);
-    a.wall_vol.resize(n);
-  }
+struct ForceCol {
+  static constexpr int v = D, rho = 2 * D, p = rho + 1, vol = rho + 2, mass = rho + 3,
+                       wall_vol = rho + 4, count = rho + 5;
 };
-
-// Raw pointers into a candidate block, read by the vector loops.
 template <int D>
-struct BlockView {
-  const double *x0, *x1, *x2, *v0, *v1, *v2, *rho, *p, *vol, *mass, *wall_vol;
-  std::ptrdiff_t len;
-  explicit BlockView(const Candidates<D>& cand)
-      : x0(cand.a.x[0].data()), x1(cand.a.x[1].data()), x2(cand.a.x[D - 1].data()),
-        v0(cand.a.v[0].data()), v1(cand.a.v[1].data()), v2(cand.a.v[D - 1].data()),
-        rho(cand.a.rho.data()), p(cand.a.p.data()), vol(cand.a.vol.data()),
-        mass(cand.a.mass.data()), wall_vol(cand.a.wall_vol.data()),
-        len(static_cast<std::ptrdiff_t>(cand.len)) {}
-};
+using ForceBlock = CandidateBlock<ForceCol<D>::count>;
 
-// Position and velocity of particle i, padded to 3 components.
 template <int D>
-struct SelfState {
+std::array<const double*, ForceCol<D>::count> force_sources(const LevelColumns<D>& c) {
+  std::array<const double*, ForceCol<D>::count> s{};
+  for (int k = 0; k < D; ++k) {
+    s[k] = c.x[k].data();
+    s[ForceCol<D>::v + k] = c.v[k].data();
+  }
+  s[ForceCol<D>::rho] = c.rho.data();
+  s[ForceCol<D>::p] = c.p.data();
+  s[ForceCol<D>::vol] = c.vol.data();
+  s[ForceCol<D>::mass] = c.mass.data();
+  s[ForceCol<D>::wall_vol] = c.wall_vol.data();
+  return s;
+}
+
+// Dummies: far away, at rest, unit density (no division by zero), no volume, mass or pressure.
+template <int D>
+std::array<double, ForceCol<D>::count> force_pad() {
+  auto pad = position_pad<ForceCol<D>::count, D>(0.0);
+  pad[ForceCol<D>::rho] = 1.0;
+  return pad;
+}
+
+// What one particle i reads of itself.
+struct Self {
   double x[3] = {0.0, 0.0, 0.0};
   double v[3] = {0.0, 0.0, 0.0};
-  SelfState(const NeighbourArrays<D>& nb, std::uint32_t i) {
+  double rho = 1.0, p = 0.0;
+  template <int D>
+  Self(const LevelColumns<D>& c, std::uint32_t i) : rho(c.rho[i]), p(c.p[i]) {
     for (int k = 0; k < D; ++k) {
-      x[k] = nb.x[k][i];
-      v[k] = nb.v[k][i];
+      x[k] = c.x[k][i];
+      v[k] = c.v[k][i];
     }
   }
 };
 
-// Running sums of one particle i (scalars, so `omp simd` can reduce them).
-struct Accum {
-  double acc[3] = {0.0, 0.0, 0.0};
-  double drho = 0.0;
+// Sums of one particle over its blocks: acceleration (s0..s2), drho/dt (s3), pairs (s4), and the
+// viscous time-step measure (max).
+struct ForceSums {
+  double s[12] = {};
   double max_visc_dt = -1e300;
-  std::uint64_t pairs = 0;
 };
 
-// Sums the pair terms of fluid particle i over its candidate block. Candidates outside the support
-// (and i itself, r = 0) get a zero kernel factor instead of a branch, so the loop vectorises.
-// kWall: the run holds wall particles, which take no part in density diffusion (as DualSPHysics'
-// Fourtakas "full" variant). kSeries: the Fourtakas hydrostatic term may use its series form.
+// The fluid particle i against one block: pressure, viscosity, continuity and (kWall: not with
+// wall neighbours) density diffusion.
 template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall>
-inline void fluid_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, std::uint32_t i,
-                      const Candidates<D>& cand, Accum& a) {
-  const SelfState<D> self(nb, i);
-  const double *xi = self.x, *vi = self.v;
-  const double rho_i = nb.rho[i], p_i = nb.p[i];
-  const double inv_rho_i = 1.0 / rho_i;
-  const double support2 = prm.kernel.support2, inv_h = prm.kernel.inv_h;
-  const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
-  const BlockView<D> c(cand);
-  const double *xj0 = c.x0, *xj1 = c.x1, *xj2 = c.x2, *vj0 = c.v0, *vj1 = c.v1, *vj2 = c.v2;
-  const double *rho = c.rho, *p = c.p, *vol = c.vol, *mass = c.mass;
-  const std::ptrdiff_t len = c.len;
-  double ax = 0.0, ay = 0.0, az = 0.0, drho = 0.0, vdt = -1e300, npair = 0.0;
-#pragma omp simd reduction(+ : ax, ay, az, drho, npair) reduction(max : vdt)
-  for (std::ptrdiff_t j = 0; j < len; ++j) {
-    const double rx = xi[0] - xj0[j], ry = xi[1] - xj1[j];
-    const double rz = D == 3 ? xi[2] - xj2[j] : 0.0;
-    const double r2 = rx * rx + ry * ry + rz * rz;
-    const bool in = r2 < support2 && r2 > 0.0;
-    const double t = 1.0 - 0.5 * std::sqrt(r2) * inv_h;
-    const double f = in ? f_coef * t * t * t : 0.0;  // F(r) = W'(r)/r, zero outside
-    const double ux = vi[0] - vj0[j], uy = vi[1] - vj1[j];
-    const double uz = D == 3 ? vi[2] - vj2[j] : 0.0;
-    const double rij_dot_gradw = f * r2;
-    const double vij_dot_rij = ux * rx + uy * ry + uz * rz;
-    const double inv_r2eta = 1.0 / (r2 + eta2);
-    // pressure: -m_j (p_i + p_j)/(rho_i rho_j) = -(p_i + p_j) V_j / rho_i
-    double g = -(p_i + p[j]) * vol[j] * inv_rho_i;
+inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceBlock<D>& blk,
+                        ForceSums& out) {
+  using C = ForceCol<D>;
+  const double *vx = blk.col[C::v].data(), *vy = blk.col[C::v + 1].data(),
+               *vz = blk.col[C::v + D - 1].data();
+  const double *rho = blk.col[C::rho].data(), *p = blk.col[C::p].data(),
+               *vol = blk.col[C::vol].data(), *mass = blk.col[C::mass].data();
+  const double* xj[3] = {blk.col[0].data(), blk.col[1].data(), blk.col[D - 1].data()};
+  const double rho_i = me.rho, p_i = me.p, inv_rho_i = 1.0 / rho_i, eta2 = prm.eta2;
+  const double* vi = me.v;
+  auto pair = [&](const PairGeometry& g, std::ptrdiff_t j, PairSums& s) {
+    double &ax = s.s0, &ay = s.s1, &az = s.s2, &drho = s.s3, &npair = s.s4;
+    const double ux = vi[0] - vx[j], uy = vi[1] - vy[j], uz = D == 3 ? vi[2] - vz[j] : 0.0;
+    const double rij_dot_gradw = g.f * g.r2;
+    const double vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
+    const double inv_r2eta = 1.0 / (g.r2 + eta2);
+    double c = pressure_pair(p_i, p[j], vol[j], inv_rho_i);
     if constexpr (VM == ViscosityModel::artificial) {
-      g += artificial_visc_coef(mass[j], prm.alpha_c0_h, vij_dot_rij, rho_i, rho[j], r2, eta2);
+      c += artificial_viscosity_pair(mass[j], prm.alpha_c0_h, vij_dot_rij, rho_i, rho[j], g.r2,
+                                     eta2);
     }
-    g *= f;
-    ax += g * rx;
-    ay += g * ry;
-    az += g * rz;
+    c *= g.f;
+    ax += c * g.rx;
+    ay += c * g.ry;
+    az += c * g.rz;
     if constexpr (VM == ViscosityModel::laminar) {
-      const double lv = mass[j] * 4.0 * prm.nu * rij_dot_gradw * inv_r2eta / (rho_i + rho[j]);
+      const double lv =
+          laminar_viscosity_pair(mass[j], prm.nu, rij_dot_gradw, inv_r2eta, rho_i, rho[j]);
       ax += lv * ux;
       ay += lv * uy;
       az += lv * uz;
     }
-    double dr = rho_i * vol[j] * f * vij_dot_rij;  // continuity: rho_i V_j v_ij . grad W
+    double dr = continuity_pair(rho_i, vol[j], g.f, vij_dot_rij);
     if constexpr (!kWall && DM == DiffusionModel::molteni) {
-      dr += prm.two_delta_h_c0 * vol[j] * (rho_i - rho[j]) * rij_dot_gradw * inv_r2eta;
+      dr += molteni_diffusion_pair(prm.two_delta_h_c0, vol[j], rho_i, rho[j], rij_dot_gradw,
+                                   inv_r2eta);
     } else if constexpr (!kWall && DM == DiffusionModel::fourtakas) {
-      const double z_ij = rx * prm.up[0] + ry * prm.up[1] + (D == 3 ? rz * prm.up[D - 1] : 0.0);
-      const double rho_h = prm.eos.rho0 * binomial_series_minus_one(prm.rho0_g_over_b * z_ij,
-                                                                      prm.inv_gamma);
-      dr += prm.two_delta_h_c0 * vol[j] * ((rho_i - rho[j]) + rho_h) * rij_dot_gradw * inv_r2eta;
+      const double z_ij =
+          g.rx * prm.up[0] + g.ry * prm.up[1] + (D == 3 ? g.rz * prm.up[D - 1] : 0.0);
+      const double rho_h =
+          hydrostatic_density_difference(prm.eos.rho0, prm.rho0_g_over_b, prm.inv_gamma, z_ij);
+      dr += fourtakas_diffusion_pair(prm.two_delta_h_c0, vol[j], rho_i, rho[j], rho_h,
+                                     rij_dot_gradw, inv_r2eta);
     }
     drho += dr;
-    vdt = std::max(vdt, in ? vij_dot_rij * inv_r2eta : -1e300);
-    npair += in ? 1.0 : 0.0;
-  }
-  a.acc[0] += ax;
-  a.acc[1] += ay;
-  a.acc[2] += az;
-  a.drho += drho;
-  a.max_visc_dt = std::max(a.max_visc_dt, vdt);
-  a.pairs += static_cast<std::uint64_t>(npair);
+    s.max = std::max(s.max, g.in ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300);
+    npair += g.in ? 1.0 : 0.0;
+  };
+  sweep_pairs<D>(prm.kernel, me.x, xj, static_cast<std::ptrdiff_t>(blk.len), pair, out.s,
+                 out.max_visc_dt);
 }
 
-// Continuity of wall particle i over its fluid candidates (dynamic boundary).
+// Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
 template <int D>
-inline void wall_run(const SolverParams<D>& prm, const NeighbourArrays<D>& nb, std::uint32_t i,
-                     const Candidates<D>& cand, Accum& a) {
-  const SelfState<D> self(nb, i);
-  const double *xi = self.x, *vi = self.v;
-  const double rho_i = nb.rho[i];
-  const double support2 = prm.kernel.support2, inv_h = prm.kernel.inv_h;
-  const double f_coef = prm.kernel.f_coef, eta2 = prm.eta2;
-  const BlockView<D> c(cand);
-  const double *xj0 = c.x0, *xj1 = c.x1, *xj2 = c.x2, *vj0 = c.v0, *vj1 = c.v1, *vj2 = c.v2;
-  const double* vol = c.wall_vol;  // buffers excluded: see NeighbourArrays::wall_vol
-  const std::ptrdiff_t len = c.len;
-  double drho = 0.0, vdt = -1e300, npair = 0.0;
-#pragma omp simd reduction(+ : drho, npair) reduction(max : vdt)
-  for (std::ptrdiff_t j = 0; j < len; ++j) {
-    const double rx = xi[0] - xj0[j], ry = xi[1] - xj1[j];
-    const double rz = D == 3 ? xi[2] - xj2[j] : 0.0;
-    const double r2 = rx * rx + ry * ry + rz * rz;
-    const bool in = r2 < support2 && r2 > 0.0;
-    const double t = 1.0 - 0.5 * std::sqrt(r2) * inv_h;
-    const double f = in ? f_coef * t * t * t : 0.0;
-    const double ux = vi[0] - vj0[j], uy = vi[1] - vj1[j];
-    const double uz = D == 3 ? vi[2] - vj2[j] : 0.0;
-    const double vij_dot_rij = ux * rx + uy * ry + uz * rz;
-    drho += rho_i * vol[j] * f * vij_dot_rij;
-    vdt = std::max(vdt, in ? vij_dot_rij / (r2 + eta2) : -1e300);
-    npair += in ? 1.0 : 0.0;
+inline void wall_sweep(const SolverParams<D>& prm, const Self& me, const ForceBlock<D>& blk,
+                       ForceSums& out) {
+  using C = ForceCol<D>;
+  const double *vx = blk.col[C::v].data(), *vy = blk.col[C::v + 1].data(),
+               *vz = blk.col[C::v + D - 1].data();
+  const double* vol = blk.col[C::wall_vol].data();
+  const double* xj[3] = {blk.col[0].data(), blk.col[1].data(), blk.col[D - 1].data()};
+  const double rho_i = me.rho, eta2 = prm.eta2;
+  const double* vi = me.v;
+  auto pair = [&](const PairGeometry& g, std::ptrdiff_t j, PairSums& s) {
+    const double ux = vi[0] - vx[j], uy = vi[1] - vy[j], uz = D == 3 ? vi[2] - vz[j] : 0.0;
+    const double vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
+    const double inv_r2eta = 1.0 / (g.r2 + eta2);
+    s.s3 += continuity_pair(rho_i, vol[j], g.f, vij_dot_rij);
+    s.max = std::max(s.max, g.in ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300);
+    s.s4 += g.in ? 1.0 : 0.0;
+  };
+  sweep_pairs<D>(prm.kernel, me.x, xj, static_cast<std::ptrdiff_t>(blk.len), pair, out.s,
+                 out.max_visc_dt);
+}
+
+// Per-thread scratch of the force pass and its statistics (ForceStats::merge across threads).
+template <int D>
+struct ForceScratch {
+  ForceBlock<D> fluid, wall;
+};
+struct ForceAcc {
+  double max_visc_dt = -1e300, max_acc2 = 0.0;
+  std::uint64_t pairs = 0;
+  void merge(const ForceAcc& o) {
+    max_visc_dt = std::max(max_visc_dt, o.max_visc_dt);
+    max_acc2 = std::max(max_acc2, o.max_acc2);
+    pairs += o.pairs;
   }
-  a.drho += drho;
-  a.max_visc_dt = std::max(a.max_visc_dt, vdt);
-  a.pairs += static_cast<std::uint64_t>(npair);
+};
+
+template <int D>
+Vec<D> acceleration(const ForceSums& s) {
+  Vec<D> a;
+  for (int k = 0; k < D; ++k) a[k] = s.s[k];
+  return a;
 }
 
 template <int D, ViscosityModel VM, DiffusionModel DM>
-ForceStats force_loop(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                      const NeighbourArrays<D>& nb, const Vec<D>* extra_acc,
+ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
+                      const LevelColumns<D>& cols, const Vec<D>* extra_acc,
                       bool buffer_reaction) {
   const auto& cells = grid.particle_cells();
-  const auto n = static_cast<std::int64_t>(ps.size());
-  double max_visc_dt = -1e300, max_acc2 = 0.0;
-  std::uint64_t pairs = 0;
-#pragma omp parallel reduction(max : max_visc_dt, max_acc2) reduction(+ : pairs)
-  {
-    Candidates<D> fluid_cand, wall_cand;  // per thread
-#pragma omp for schedule(dynamic, 512)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
+  const auto src = force_sources(cols);
+  const auto pad = force_pad<D>();
+  auto body = [&](std::int64_t ii, ForceScratch<D>& scratch, ForceAcc& acc) {
     const auto i = static_cast<std::uint32_t>(ii);
-    Accum a;
-    fluid_cand.gather(nb, grid, cells[i], Group::fluid);
+    const Self me(cols, i);
+    ForceSums s;
+    scratch.fluid.gather(src, pad, grid, cells[i], Groups::fluid);
     if (ps.kind[i] == Kind::buffer) {
       // v and rho come from another level: acc is only the reaction of this level's fluid and
-      // buffer neighbours (walls left out), from which the simulation measures the net force the
+      // buffer neighbours (walls left out), from which the coupling measures the net force the
       // buffer exerts on the fluid. Buffer-buffer pairs cancel in that sum.
-      if (buffer_reaction) fluid_run<D, VM, DM, false>(prm, nb, i, fluid_cand, a);
-      for (int k = 0; k < D; ++k) ps.acc[i][k] = a.acc[k];
+      if (buffer_reaction) fluid_sweep<D, VM, DM, false>(prm, me, scratch.fluid, s);
+      ps.acc[i] = acceleration<D>(s);
       ps.drho[i] = 0.0;
-      continue;
+      return;
     }
     if (ps.kind[i] == Kind::wall) {
-      wall_run(prm, nb, i, fluid_cand, a);
+      wall_sweep(prm, me, scratch.fluid, s);
     } else {
-      fluid_run<D, VM, DM, false>(prm, nb, i, fluid_cand, a);
-      wall_cand.gather(nb, grid, cells[i], Group::wall);
-      fluid_run<D, VM, DM, true>(prm, nb, i, wall_cand, a);
+      fluid_sweep<D, VM, DM, false>(prm, me, scratch.fluid, s);
+      scratch.wall.gather(src, pad, grid, cells[i], Groups::wall);
+      fluid_sweep<D, VM, DM, true>(prm, me, scratch.wall, s);
     }
-    Vec<D> acc;
-    for (int k = 0; k < D; ++k) acc[k] = a.acc[k];
-    if (extra_acc != nullptr && ps.kind[i] != Kind::wall) acc += extra_acc[i];
-    ps.acc[i] = acc;
-    ps.drho[i] = a.drho;
-    if (ps.kind[i] != Kind::wall) max_acc2 = std::max(max_acc2, norm2(acc));
-    max_visc_dt = std::max(max_visc_dt, a.max_visc_dt);
-    pairs += a.pairs;
-  }
-  }
-  return {max_visc_dt, std::sqrt(max_acc2), pairs};
+    Vec<D> a = acceleration<D>(s);
+    if (extra_acc != nullptr && ps.kind[i] != Kind::wall) a += extra_acc[i];
+    ps.acc[i] = a;
+    ps.drho[i] = s.s[3];
+    if (ps.kind[i] != Kind::wall) acc.max_acc2 = std::max(acc.max_acc2, norm2(a));
+    acc.max_visc_dt = std::max(acc.max_visc_dt, s.max_visc_dt);
+    acc.pairs += static_cast<std::uint64_t>(s.s[4]);
+  };
+  const ForceAcc total =
+      exec::for_each_gather<ForceScratch<D>, ForceAcc>(static_cast<std::int64_t>(ps.size()), 512, body);
+  return {total.max_visc_dt, std::sqrt(total.max_acc2), total.pairs};
 }
 
 template <int D, ViscosityModel VM>
 ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
-                              const CellGrid<D>& grid, const NeighbourArrays<D>& nb,
+                              const CellGrid<D>& grid, const LevelColumns<D>& cols,
                               const Vec<D>* extra, bool br) {
   switch (prm.diffusion) {
     case DiffusionModel::none:
-      return force_loop<D, VM, DiffusionModel::none>(prm, ps, grid, nb, extra, br);
+      return force_pass<D, VM, DiffusionModel::none>(prm, ps, grid, cols, extra, br);
     case DiffusionModel::molteni:
-      return force_loop<D, VM, DiffusionModel::molteni>(prm, ps, grid, nb, extra, br);
+      return force_pass<D, VM, DiffusionModel::molteni>(prm, ps, grid, cols, extra, br);
     case DiffusionModel::fourtakas:
-      return force_loop<D, VM, DiffusionModel::fourtakas>(prm, ps, grid, nb, extra, br);
+      return force_pass<D, VM, DiffusionModel::fourtakas>(prm, ps, grid, cols, extra, br);
   }
   return {};
 }
@@ -268,29 +225,38 @@ ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
 }  // namespace
 
 template <int D>
+ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
+                                 const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                                 const Vec<D>* extra_acc, bool buffer_reaction) {
+  ps.acc.resize(ps.size());
+  ps.drho.resize(ps.size());
+  if (prm.viscosity == ViscosityModel::laminar) {
+    return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, cols, extra_acc,
+                                                          buffer_reaction);
+  }
+  return dispatch_diffusion<D, ViscosityModel::artificial>(prm, ps, grid, cols, extra_acc,
+                                                           buffer_reaction);
+}
+
+template <int D>
+ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
+                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc, bool buffer_reaction) {
+  ws.pack(ps, prm.eos);
+  return compute_forces_packed(prm, ps, grid, ws, extra_acc, buffer_reaction);
+}
+
+template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid) {
   ForceWorkspace<D> ws;
   return compute_forces(prm, ps, grid, ws);
 }
 
-template <int D>
-ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc,
-                          bool buffer_reaction) {
-  const std::size_t n = ps.size();
-  ps.p.resize(n);
-  ps.acc.resize(n);
-  ps.drho.resize(n);
-  NeighbourArrays<D>& nb = ws.packed;
-  nb.pack(ps, prm.eos);
-  if (prm.viscosity == ViscosityModel::laminar) {
-    return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, nb, extra_acc,
-                                                          buffer_reaction);
-  }
-  return dispatch_diffusion<D, ViscosityModel::artificial>(prm, ps, grid, nb, extra_acc,
-                                                           buffer_reaction);
-}
-
+template ForceStats compute_forces_packed<2>(const SolverParams<2>&, ParticleSet<2>&,
+                                             const CellGrid<2>&, const LevelColumns<2>&,
+                                             const Vec<2>*, bool);
+template ForceStats compute_forces_packed<3>(const SolverParams<3>&, ParticleSet<3>&,
+                                             const CellGrid<3>&, const LevelColumns<3>&,
+                                             const Vec<3>*, bool);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&,

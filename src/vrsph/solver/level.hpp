@@ -19,7 +19,7 @@ struct Level {
   SolverParams<D> prm;
   ParticleSet<D> ps;
   CellGrid<D> grid;
-  ForceWorkspace<D> force_ws;
+  LevelColumns<D> cols;  // the state packed for the neighbour passes of one force evaluation
   SurfaceFields<D> sf;
   LevelRegion<D> region;                // single-resolution runs: level 0 owns everything
   std::vector<MassPoint<D>> mass_points;  // where particles of this level are created

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "vrsph/physics/pair_terms.hpp"
+#include "vrsph/physics/density_diffusion.hpp"
 #include "vrsph/setup/geometry.hpp"
 
 namespace vrsph {

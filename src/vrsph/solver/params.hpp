@@ -6,7 +6,8 @@
 #include "vrsph/core/vec.hpp"
 #include "vrsph/physics/eos.hpp"
 #include "vrsph/physics/shifting.hpp"
-#include "vrsph/setup/case_spec.hpp"
+#include "vrsph/physics/density_diffusion.hpp"
+#include "vrsph/physics/viscosity.hpp"
 
 namespace vrsph {
 

@@ -1,14 +1,14 @@
 #include "vrsph/solver/simulation.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <chrono>
 #include <cmath>
 #include <type_traits>
 
-#include "vrsph/physics/pair_terms.hpp"
+#include "vrsph/exec/parallel.hpp"
 #include "vrsph/physics/shifting.hpp"
+#include "vrsph/physics/walls.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/solver/level_setup.hpp"
 #include "vrsph/solver/momentum.hpp"
@@ -171,24 +171,22 @@ void Simulation<D>::predictor(Level<D>& L, double dt) {
   const double half = 0.5 * dt;
   const double rho0 = L.prm.eos.rho0;
   const Vec<D> g = L.prm.gravity;
-  const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
+  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     ps.pos0[i] = ps.pos[i];
     ps.vel0[i] = ps.vel[i];
     ps.rho0[i] = ps.rho[i];
     if (ps.kind[i] == Kind::buffer) {
       ps.pos[i] += half * ps.vel[i];
-      continue;
+      return;
     }
     ps.rho[i] = ps.rho[i] + half * ps.drho[i];
     if (ps.kind[i] == Kind::wall) {
-      ps.rho[i] = std::max(ps.rho[i], rho0);
-      continue;
+      ps.rho[i] = wall_density(ps.rho[i], rho0);
+      return;
     }
     ps.pos[i] += half * ps.vel[i];
     ps.vel[i] += half * (ps.acc[i] + g);
-  }
+  });
 }
 
 // Corrector: v' = v + dt (a+ + g), x' = x + dt (v + v')/2 + dr_shift, rho' = rho (2 - eps)/(2 + eps),
@@ -200,13 +198,11 @@ void Simulation<D>::corrector(Level<D>& L, double dt) {
   const SolverParams<D>& prm = L.prm;
   const double rho0 = prm.eos.rho0;
   const bool shifting = prm.shifting.model != ShiftingModel::none;
-  const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
+  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     if (ps.kind[i] == Kind::wall) {
       const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
-      ps.rho[i] = std::max(ps.rho0[i] * (2.0 - eps) / (2.0 + eps), rho0);
-      continue;
+      ps.rho[i] = wall_density(ps.rho0[i] * (2.0 - eps) / (2.0 + eps), rho0);
+      return;
     }
     if (shifting) {  // from the half-step sums and velocity
       ps.shift[i] = shifting_displacement<D>(prm.shifting, L.sf.grad_c[i], L.sf.div_r[i],
@@ -220,13 +216,13 @@ void Simulation<D>::corrector(Level<D>& L, double dt) {
       ps.rho[i] = ps.rho0[i];
       ps.vel[i] = ps.vel0[i];
       ps.pos[i] = ps.pos0[i] + dt * ps.vel0[i] + ps.shift[i];
-      continue;
+      return;
     }
     const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
     ps.rho[i] = ps.rho0[i] * (2.0 - eps) / (2.0 + eps);
     ps.vel[i] = ps.vel0[i] + dt * (ps.acc[i] + prm.gravity);
     ps.pos[i] = ps.pos0[i] + (0.5 * dt) * (ps.vel0[i] + ps.vel[i]) + ps.shift[i];
-  }
+  });
 }
 
 // Next dt: the minimum over levels (one global dt, PHYSICS.md section 5); `s` holds the maxima
@@ -258,12 +254,12 @@ void Simulation<D>::surface_fields_all() {
   const double t0 = now_seconds();
   const bool st = levels_[0].prm.sigma > 0.0;
   const bool vres = levels_.size() > 1;
-  for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.sf);
+  for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.cols, L.sf);
   if (st) {
     if (vres) exchange_buffer_surface_field(&SurfaceFields<D>::lambda, kBufferLambdaReach);
-    for (Level<D>& L : levels_) surface_normals(L.prm, L.ps, L.grid, L.sf);
+    for (Level<D>& L : levels_) surface_normals(L.prm, L.ps, L.grid, L.cols, L.sf);
     if (vres) exchange_buffer_surface_field(&SurfaceFields<D>::normal, kBufferNormalReach);
-    for (Level<D>& L : levels_) surface_curvature_force(L.prm, L.ps, L.grid, L.sf);
+    for (Level<D>& L : levels_) surface_curvature_force(L.prm, L.ps, L.grid, L.cols, L.sf);
   }
   times_.surface += now_seconds() - t0;
 }
@@ -292,13 +288,12 @@ void Simulation<D>::exchange_buffer_surface_field(std::vector<T> SurfaceFields<D
   for (Level<D>& L : levels_) {
     const auto n = static_cast<std::int64_t>(L.ps.size());
     std::vector<T>& own = L.sf.*field;
-#pragma omp parallel for schedule(dynamic, 64)
-    for (std::int64_t ii = 0; ii < n; ++ii) {
+    exec::for_each_dynamic(n, 64, [&](std::int64_t ii) {
       const auto i = static_cast<std::size_t>(ii);
-      if (L.ps.kind[i] != Kind::buffer) continue;
+      if (L.ps.kind[i] != Kind::buffer) return;
       const ZoneInfo<D> z = L.region.classify(L.ps.pos[i]);
-      if (z.donor < 0) continue;  // moved into the fluid region during the step: kind changes later
-      if (z.depth + reach_h * L.prm.h <= z.width) continue;  // own support inside fluid + shell
+      if (z.donor < 0) return;  // moved into the fluid region during the step: kind changes later
+      if (z.depth + reach_h * L.prm.h <= z.width) return;  // own support inside fluid + shell
       const Level<D>& dl = levels_[static_cast<std::size_t>(z.donor)];
       T v = shepard_field<D, T>(L.ps.pos[i], dl.ps, dl.grid, dl.prm.kernel, dl.sf.*field, T{});
       if constexpr (std::is_same_v<T, Vec<D>>) {
@@ -306,7 +301,7 @@ void Simulation<D>::exchange_buffer_surface_field(std::vector<T> SurfaceFields<D
         v = m >= 0.5 ? v * (1.0 / m) : Vec<D>{};
       }
       own[i] = v;
-    }
+    });
   }
 }
 
@@ -329,14 +324,15 @@ void Simulation<D>::remove_spurious_net_force(bool surface_tension) {
 // with the surface-tension acceleration added.
 template <int D>
 ForceStats Simulation<D>::evaluate_forces() {
+  for (Level<D>& L : levels_) L.cols.pack(L.ps, L.prm.eos);  // once, for every pass below
   surface_fields_all();
   const double t0 = now_seconds();
   const bool st = levels_[0].prm.sigma > 0.0;
   ForceStats s;
   const bool reaction = spec_.vres_conserve_momentum && levels_.size() > 1;
   for (Level<D>& L : levels_) {
-    s.merge(compute_forces(L.prm, L.ps, L.grid, L.force_ws, st ? L.sf.acc_st.data() : nullptr,
-                           reaction));
+    s.merge(compute_forces_packed(L.prm, L.ps, L.grid, L.cols,
+                                  st ? L.sf.acc_st.data() : nullptr, reaction));
   }
   remove_spurious_net_force(st);
   times_.forces += now_seconds() - t0;
@@ -346,10 +342,11 @@ ForceStats Simulation<D>::evaluate_forces() {
 template <int D>
 void Simulation<D>::update_surface_fields() {
   const double keep = times_.surface;  // output work, not stepping time
+  for (Level<D>& L : levels_) L.cols.pack(L.ps, L.prm.eos);
   if (has_surface_fields()) {
     surface_fields_all();
   } else {
-    for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.sf);
+    for (Level<D>& L : levels_) surface_sums(L.prm, L.ps, L.grid, L.cols, L.sf);
   }
   times_.surface = keep;
 }
@@ -422,11 +419,9 @@ void Simulation<D>::check_state(const Level<D>& L) const {
     if (ps.kind[i] == Kind::wall) return false;
     return !finite(i) || ps.rho[i] < 0.5 * rho0 || ps.rho[i] > 2.0 * rho0;
   };
-  std::int64_t first = n;  // lowest failing index: the same report for any thread count
-#pragma omp parallel for schedule(static) reduction(min : first)
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (bad(static_cast<std::size_t>(i))) first = std::min(first, i);
-  }
+  // The lowest failing index: the same report for any thread count.
+  const std::int64_t first =
+      exec::first_index(n, [&](std::int64_t i) { return bad(static_cast<std::size_t>(i)); });
   if (first < n) {
     const auto i = static_cast<std::size_t>(first);
     const bool is_finite = finite(i);

@@ -1,6 +1,7 @@
 // Neighbour passes of the surface-tension model (physics/surface_tension.hpp) and the sums that
-// particle shifting needs (physics/shifting.hpp). Gather loops: each fluid particle writes only
-// its own entries, so results do not depend on the thread count. Wall particles get zeros.
+// particle shifting needs (physics/shifting.hpp). Gather passes through candidate blocks and the
+// vector sweep of exec/: each fluid particle writes only its own entries, so results do not
+// depend on the thread count. Wall particles get zeros.
 #pragma once
 
 #include <array>
@@ -9,6 +10,7 @@
 #include "vrsph/core/mat.hpp"
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
+#include "vrsph/solver/columns.hpp"
 #include "vrsph/solver/params.hpp"
 
 namespace vrsph {
@@ -24,16 +26,21 @@ struct SurfaceFields {
   std::vector<double> curvature; // kappa_i
   std::vector<Vec<D>> acc_st;    // surface-tension acceleration
 
-  // Positions and volumes as separate arrays, for the vectorised neighbour loops.
-  std::array<std::vector<double>, D> x;
-  std::vector<double> vol;
+  // The columns the passes read when called without a level's packed columns (filled by the
+  // four-argument surface_sums), and the normal as columns for the curvature pass's blocks.
+  LevelColumns<D> own;
+  std::array<std::vector<double>, D> normal_col;
 
   void resize(std::size_t n);
-  void pack(const ParticleSet<D>& ps);
 };
 
 // Pass 1: M_i (and lambda_i, L_i), grad C_i, div r_i and the Shepard sum, over fluid and wall
-// neighbours (walls give support, so a wall is not mistaken for a free surface).
+// neighbours (walls give support, so a wall is not mistaken for a free surface). `cols`: the
+// level's columns packed from ps (positions and volumes are read), passed to passes 2 and 3 too.
+template <int D>
+void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                  const LevelColumns<D>& cols, SurfaceFields<D>& sf);
+// The same, packing positions and volumes into sf.own.
 template <int D>
 void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                   SurfaceFields<D>& sf);
@@ -41,17 +48,36 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
 // Pass 2: normals from the corrected gradient of lambda (fluid neighbours). Needs surface_sums.
 template <int D>
 void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
-                     SurfaceFields<D>& sf);
+                     const LevelColumns<D>& cols, SurfaceFields<D>& sf);
 
 // Pass 3: filtered curvature and the CSF acceleration from the normals in sf (fluid neighbours).
 // Tests may impose sf.normal before calling it.
 template <int D>
 void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
-                             const CellGrid<D>& grid, SurfaceFields<D>& sf);
+                             const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                             SurfaceFields<D>& sf);
 
 // Passes 2 and 3 together.
 template <int D>
 void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
-                           const CellGrid<D>& grid, SurfaceFields<D>& sf);
+                           const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                           SurfaceFields<D>& sf);
+
+// Passes 2 and 3 on the columns sf.own of the four-argument surface_sums (tests).
+template <int D>
+void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                     SurfaceFields<D>& sf) {
+  surface_normals(prm, ps, grid, sf.own, sf);
+}
+template <int D>
+void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                             const CellGrid<D>& grid, SurfaceFields<D>& sf) {
+  surface_curvature_force(prm, ps, grid, sf.own, sf);
+}
+template <int D>
+void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                           const CellGrid<D>& grid, SurfaceFields<D>& sf) {
+  surface_tension_force(prm, ps, grid, sf.own, sf);
+}
 
 }  // namespace vrsph

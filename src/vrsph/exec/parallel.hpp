@@ -1,0 +1,83 @@
+// The execution layer: how a pass runs over particles. This header holds the only thread-level
+// OpenMP pragmas of the project; a pass is a functor called for one index i, writing only the
+// entries of i (gather form), so its result does not depend on the thread count or schedule.
+// The functors own no allocation, virtual call or std::function inside the loop, so the same
+// bodies can later be launched by a CUDA back end implementing these few entry points.
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdint>
+
+namespace vrsph::exec {
+
+// Threads a launch uses (OpenMP's current maximum), and a way to set it (--threads).
+inline int thread_count() { return omp_get_max_threads(); }
+inline void set_thread_count(int n) { omp_set_num_threads(n); }
+
+// body(i) for every i in [0, n), in equal static blocks: cheap, uniform per-particle work.
+template <class Body>
+inline void for_each(std::int64_t n, Body&& body) {
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) body(i);
+}
+
+// body(i) for every i in [0, n), handed out in chunks of `chunk` consecutive indices: neighbour
+// passes, whose cost varies per particle. Consecutive indices share cells after the sort.
+template <class Body>
+inline void for_each_dynamic(std::int64_t n, int chunk, Body&& body) {
+#pragma omp parallel for schedule(dynamic, chunk)
+  for (std::int64_t i = 0; i < n; ++i) body(i);
+}
+
+// body(i, scratch, acc) with one Scratch (reused buffers, e.g. a candidate block) and one Acc per
+// thread; the threads' Acc are combined with Acc::merge into the result. Acc::merge must be
+// order-independent (maxima, integer sums) for the result to be independent of the threads.
+template <class Scratch, class Acc, class Body>
+inline Acc for_each_gather(std::int64_t n, int chunk, Body&& body) {
+  Acc total{};
+#pragma omp parallel
+  {
+    Scratch scratch{};
+    Acc acc{};
+#pragma omp for schedule(dynamic, chunk) nowait
+    for (std::int64_t i = 0; i < n; ++i) body(i, scratch, acc);
+#pragma omp critical(vrsph_exec_merge)
+    total.merge(acc);
+  }
+  return total;
+}
+
+// body(i, scratch) with one Scratch per thread and nothing to combine.
+template <class Scratch, class Body>
+inline void for_each_with(std::int64_t n, int chunk, Body&& body) {
+  struct Nothing {
+    void merge(const Nothing&) {}
+  };
+  for_each_gather<Scratch, Nothing>(
+      n, chunk, [&](std::int64_t i, Scratch& scratch, Nothing&) { body(i, scratch); });
+}
+
+// The lowest i in [0, n) with pred(i), or n when there is none: the same answer for any thread
+// count (diagnoses name the same particle).
+template <class Pred>
+inline std::int64_t first_index(std::int64_t n, Pred&& pred) {
+  std::int64_t first = n;
+#pragma omp parallel for schedule(static) reduction(min : first)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (pred(i)) first = std::min(first, i);
+  }
+  return first;
+}
+
+// Sum of the integer count(i) over [0, n) (exact, so independent of the thread count).
+template <class Count>
+inline std::int64_t count_sum(std::int64_t n, Count&& count) {
+  std::int64_t sum = 0;
+#pragma omp parallel for schedule(static) reduction(+ : sum)
+  for (std::int64_t i = 0; i < n; ++i) sum += count(i);
+  return sum;
+}
+
+}  // namespace vrsph::exec

@@ -1,0 +1,35 @@
+// Viscous terms of the momentum equation, one pair (i, j) seen from i, eta2 = (0.1 h)^2 and
+// inv_r2eta = 1 / (r^2 + eta2). Written without branches (select, not return) so the force loop
+// vectorises under the default trapping-math rules.
+//  - Laminar (Lo & Shao 2002; Morris et al. 1997):
+//      (dv_i/dt) += 4 nu m_j (r_ij . grad_i W_ij) / ((rho_i + rho_j)(r^2 + eta^2)) v_ij;
+//    laminar_viscosity_pair returns the factor of v_ij.
+//  - Artificial (Monaghan 1992), for approaching pairs only (v_ij . r_ij < 0):
+//      Pi_ij = -alpha c0 mu_ij / rho_bar_ij,  mu_ij = h v_ij . r_ij / (r^2 + eta^2),
+//      (dv_i/dt) += -m_j Pi_ij grad_i W_ij;
+//    artificial_viscosity_pair returns the factor of grad_i W_ij (h folded into alpha_c0_h).
+//  - Viscous time-step measure (Monaghan & Kos 1999): the largest v_ij . r_ij / (r^2 + eta^2) over
+//    the pairs within the support sets dt_visc = h / (c0 + h max).
+#pragma once
+
+namespace vrsph {
+
+enum class ViscosityModel { laminar, artificial };
+
+inline double laminar_viscosity_pair(double m_j, double nu, double rij_dot_gradw, double inv_r2eta,
+                                     double rho_i, double rho_j) {
+  return m_j * 4.0 * nu * rij_dot_gradw * inv_r2eta / (rho_i + rho_j);
+}
+
+inline double artificial_viscosity_pair(double m_j, double alpha_c0_h, double vij_dot_rij,
+                                        double rho_i, double rho_j, double r2, double eta2) {
+  const double mu = vij_dot_rij / (r2 + eta2);
+  const double pi_ij = -alpha_c0_h * mu / (0.5 * (rho_i + rho_j));
+  return vij_dot_rij < 0.0 ? -m_j * pi_ij : 0.0;
+}
+
+inline double viscous_dt_measure(double vij_dot_rij, double inv_r2eta) {
+  return vij_dot_rij * inv_r2eta;
+}
+
+}  // namespace vrsph
