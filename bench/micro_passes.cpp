@@ -6,7 +6,7 @@
 
 #include "vrsph/setup/case_parser.hpp"
 #include "vrsph/solver/forces.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 
 namespace {
 

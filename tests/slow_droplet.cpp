@@ -10,7 +10,7 @@
 #include "case_util.hpp"
 #include "vrsph/analysis/laplace.hpp"
 #include "vrsph/driver/level_samples.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
 namespace {

@@ -16,7 +16,7 @@
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/solver/forces.hpp"
 #include "vrsph/solver/params.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
 namespace {

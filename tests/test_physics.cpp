@@ -7,7 +7,7 @@
 
 #include "vrsph/analysis/front.hpp"
 #include "case_util.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
 namespace {

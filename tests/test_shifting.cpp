@@ -18,7 +18,7 @@
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/solver/params.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 #include "vrsph/solver/surface_pass.hpp"
 
 namespace vrsph {

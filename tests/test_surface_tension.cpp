@@ -25,7 +25,7 @@
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/solver/params.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 #include "vrsph/solver/surface_pass.hpp"
 
 namespace vrsph {

@@ -9,7 +9,7 @@
 #include "case_util.hpp"
 #include "vrsph/analysis/front.hpp"
 #include "vrsph/setup/case_parser.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 #include "vrsph/vres/levels.hpp"
 
 namespace vrsph {

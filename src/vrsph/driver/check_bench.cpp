@@ -8,7 +8,7 @@
 #include "vrsph/driver/run.hpp"
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/output/summary.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
 namespace {
@@ -27,12 +27,12 @@ int check_impl(CaseSpec& spec) {
     const auto& L = sim.level(l);
     fmt::print("  level {} (inside refinement box, parent level {}): dp = {:g} m, h = {:g} m, "
                "{} fluid, {} buffer, {} wall, {} mass points\n",
-               l, L.region.parent, L.prm.dp, L.prm.h, L.ps.count(Kind::fluid),
-               L.ps.count(Kind::buffer), L.ps.count(Kind::wall), L.mass_points.size());
+               l, sim.link(l).region.parent, L.prm.dp, L.prm.h, L.ps.count(Kind::fluid),
+               L.ps.count(Kind::buffer), L.ps.count(Kind::wall), sim.link(l).mass_points.size());
   }
   if (sim.level_count() > 1) {
     fmt::print("  level 0 (coarsest): {} buffer, {} mass points\n",
-               ps.count(Kind::buffer), sim.level(0).mass_points.size());
+               ps.count(Kind::buffer), sim.link(0).mass_points.size());
   }
   fmt::print("  c0 = {:.6g} m/s (max_speed {:.6g} m/s), B = {:.6g} Pa\n", sim.setup().c0,
              sim.setup().max_speed, sim.params().eos.b);

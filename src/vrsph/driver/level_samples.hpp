@@ -7,7 +7,7 @@
 #include "vrsph/analysis/laplace.hpp"
 #include "vrsph/output/line_profile.hpp"
 #include "vrsph/setup/geometry.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
 

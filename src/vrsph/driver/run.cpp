@@ -1,7 +1,6 @@
 #include "vrsph/driver/run.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -11,6 +10,7 @@
 
 #include "vrsph/driver/checkpoint.hpp"
 #include "vrsph/driver/run_outputs.hpp"
+#include "vrsph/exec/parallel.hpp"
 #include "vrsph/output/atomic_file.hpp"
 #include "vrsph/output/boxes_vtp.hpp"
 #include "vrsph/output/progress.hpp"
@@ -69,9 +69,9 @@ void restore_from_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
     ck.get_particles<D>(static_cast<int>(l), L.ps);
     if (levels > 1) {
       const auto& m = ck.f64(fmt::format("level{}.point_mass", l));
-      if (m.size() != L.mass_points.size())
+      if (m.size() != sim.link(l).mass_points.size())
         throw CaseError("--resume: the checkpoint's mass points do not match the case's refinement boxes");
-      for (std::size_t q = 0; q < m.size(); ++q) L.mass_points[q].mass = m[q];
+      for (std::size_t q = 0; q < m.size(); ++q) sim.link(l).mass_points[q].mass = m[q];
     }
   }
   const auto& cv = ck.u64("counters");
@@ -111,10 +111,10 @@ void write_refinement_boxes(const Simulation<D>& sim, const std::filesystem::pat
     boxes.push_back(o);
   };
   for (std::size_t l = 1; l < sim.level_count(); ++l) {
-    const auto& r = sim.level(l).region;
+    const auto& r = sim.link(l).region;
     outline(r.box, static_cast<int>(l), 0);
     outline(r.box.grown(r.width), static_cast<int>(l), 1);
-    for (const auto& c : sim.level(static_cast<std::size_t>(r.parent)).region.children)
+    for (const auto& c : sim.link(static_cast<std::size_t>(r.parent)).region.children)
       if (c.level == static_cast<int>(l)) outline(c.box.grown(-c.width), r.parent, 2);
   }
   write_boxes_vtp(path, boxes, D);
@@ -138,7 +138,7 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
   write_file_atomic(opt.out_dir / "case.toml", case_to_toml(spec));
   if (sim.level_count() > 1) write_refinement_boxes(sim, opt.out_dir / "refinement_boxes.vtp");
   RunOutputs<D> out(spec, opt.out_dir, !opt.resume, sim.time());
-  const int threads = omp_get_max_threads();
+  const int threads = exec::thread_count();
   if (!opt.quiet) {
     fmt::print("vrsph: {} ({}D): {} fluid + {} wall particles, dp = {:g} m, h = {:g} m, c0 = {:.4g} m/s, "
                "{} thread(s), output in {}{}\n",
@@ -195,7 +195,7 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
 }  // namespace
 
 int run_case(CaseSpec spec, const RunOptions& opt) {
-  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  if (opt.threads > 0) exec::set_thread_count(opt.threads);
   if (!opt.resume) prepare_out_dir(opt.out_dir, opt.force);
   return spec.dimension == 2 ? run_impl<2>(spec, opt) : run_impl<3>(spec, opt);
 }

@@ -166,7 +166,7 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
     ck.put_particles<D>(static_cast<int>(l), sim.level(l).ps);
     if (nl > 1) {
       std::vector<double> masses;
-      for (const auto& mp : sim.level(l).mass_points) masses.push_back(mp.mass);
+      for (const auto& mp : sim.link(l).mass_points) masses.push_back(mp.mass);
       ck.put(fmt::format("level{}.point_mass", l), masses);
     }
   }

@@ -8,7 +8,7 @@
 #include "vrsph/output/series.hpp"
 #include "vrsph/output/snapshot.hpp"
 #include "vrsph/setup/case_spec.hpp"
-#include "vrsph/solver/simulation.hpp"
+#include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
 

@@ -38,7 +38,7 @@ using ForceWorkspace = LevelColumns<D>;
 // ps (LevelColumns::pack, which also fills ps.p). extra_acc (null: none) is a per-particle
 // acceleration added to the fluid's, e.g. surface tension; it counts in ForceStats::max_acc.
 // buffer_reaction: buffer particles get the acceleration their level's fluid and buffer
-// neighbours exert on them (solver/momentum.hpp measures the coupling's net force from it);
+// neighbours exert on them (vres/momentum.hpp measures the coupling's net force from it);
 // otherwise their acc is 0.
 template <int D>
 ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,

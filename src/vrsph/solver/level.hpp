@@ -1,16 +1,15 @@
 // One resolution level: a complete particle system with its own dp, h, mass, cell grid and
-// particles (fluid, wall and buffer), and the part of space it owns. Physics passes run per
-// level and never look at another level; vres/coupling.hpp exchanges data between levels.
+// particles (fluid, wall and buffer). The stepper (solver/stepper.hpp) advances one level and never
+// looks at another; what ties levels together (regions, buffers, mass points) lives in vres/.
 #pragma once
 
 #include <vector>
 
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
-#include "vrsph/solver/forces.hpp"
+#include "vrsph/solver/columns.hpp"
 #include "vrsph/solver/params.hpp"
 #include "vrsph/solver/surface_pass.hpp"
-#include "vrsph/vres/region.hpp"
 
 namespace vrsph {
 
@@ -21,8 +20,10 @@ struct Level {
   CellGrid<D> grid;
   LevelColumns<D> cols;  // the state packed for the neighbour passes of one force evaluation
   SurfaceFields<D> sf;
-  LevelRegion<D> region;                // single-resolution runs: level 0 owns everything
-  std::vector<MassPoint<D>> mass_points;  // where particles of this level are created
+  // Buffer particles only: the direction along which the corrector drops their shifting (the
+  // normal of the nearest interface face), set before each corrector by whoever owns the buffers.
+  // Empty when the level has no buffer.
+  std::vector<Vec<D>> buffer_shift_normal;
 };
 
 }  // namespace vrsph

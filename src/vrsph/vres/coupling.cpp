@@ -1,5 +1,6 @@
 #include "vrsph/vres/coupling.hpp"
 
+#include "vrsph/exec/parallel.hpp"
 #include "vrsph/vres/interpolation.hpp"
 
 namespace vrsph {
@@ -38,23 +39,23 @@ bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t fi
 }  // namespace
 
 template <int D>
-void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64_t& next_id,
-                           CouplingTally& tally) {
+void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
+                           double dt, std::uint64_t& next_id, CouplingTally& tally) {
   if (dt <= 0.0) return;
-  for (Level<D>& L : levels) {
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    Level<D>& L = levels[l];
+    std::vector<MassPoint<D>>& points = links[l].mass_points;
     const double m = L.prm.mass;
-    const auto np = static_cast<std::int64_t>(L.mass_points.size());
-    std::vector<InterpolatedState<D>> st(L.mass_points.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t q = 0; q < np; ++q) {
-      const MassPoint<D>& P = L.mass_points[static_cast<std::size_t>(q)];
+    std::vector<InterpolatedState<D>> st(points.size());
+    exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t q) {
+      const MassPoint<D>& P = points[static_cast<std::size_t>(q)];
       const Level<D>& donor = levels[static_cast<std::size_t>(P.donor)];
       st[static_cast<std::size_t>(q)] =
           interpolate_from_level<D>(P.x, donor.ps, donor.grid, donor.prm.kernel);
-    }
+    });
     const std::size_t first_new = L.ps.size();
-    for (std::size_t q = 0; q < L.mass_points.size(); ++q) {
-      MassPoint<D>& P = L.mass_points[q];
+    for (std::size_t q = 0; q < points.size(); ++q) {
+      MassPoint<D>& P = points[q];
       const InterpolatedState<D>& s = st[q];
       // The share of the face element that holds fluid: the donor's kernel-smoothed indicator
       // sum_j V_j W, walls counted (next to a wall the fluid sum alone falls to about 1/2 where
@@ -79,13 +80,13 @@ void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64
 }
 
 template <int D>
-void update_kinds(Level<D>& L, CouplingTally& tally) {
+void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
   ParticleSet<D>& ps = L.ps;
   std::vector<std::uint8_t> keep(ps.size(), 1);
   std::size_t removed = 0;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.kind[i] == Kind::wall) continue;
-    switch (L.region.classify(ps.pos[i]).zone) {
+    switch (link.region.classify(ps.pos[i]).zone) {
       case Zone::fluid: ps.kind[i] = Kind::fluid; break;
       case Zone::buffer: ps.kind[i] = Kind::buffer; break;
       case Zone::outside:
@@ -101,19 +102,19 @@ void update_kinds(Level<D>& L, CouplingTally& tally) {
 }
 
 template <int D>
-std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally,
+std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
+                                const std::vector<LevelLink<D>>& links, CouplingTally& tally,
                                 double fill_min) {
   std::size_t removed_all = 0;
-  for (Level<D>& L : levels) {
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    Level<D>& L = levels[l];
     ParticleSet<D>& ps = L.ps;
     const auto n = static_cast<std::int64_t>(ps.size());
     std::vector<std::uint8_t> keep(ps.size(), 1);
-    std::int64_t removed = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : removed)
-    for (std::int64_t ii = 0; ii < n; ++ii) {
+    exec::for_each_dynamic(n, 64, [&](std::int64_t ii) {
       const auto i = static_cast<std::size_t>(ii);
-      if (ps.kind[i] != Kind::buffer) continue;
-      const ZoneInfo<D> z = L.region.classify(ps.pos[i]);
+      if (ps.kind[i] != Kind::buffer) return;
+      const ZoneInfo<D> z = links[l].region.classify(ps.pos[i]);
       const Level<D>& donor = levels[static_cast<std::size_t>(z.donor)];
       const InterpolatedState<D> s =
           interpolate_from_level<D>(ps.pos[i], donor.ps, donor.grid, donor.prm.kernel);
@@ -126,12 +127,13 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& ta
       // low). On the relaxing square drop the same test dented the top crossing instead.
       if (s.shepard < kVresShepardMin || donor_fill(s) < fill_min) {
         keep[i] = 0;
-        ++removed;
-        continue;
+        return;
       }
       ps.rho[i] = s.rho;
       ps.vel[i] = s.vel;
-    }
+    });
+    const std::int64_t removed =
+        exec::count_sum(n, [&](std::int64_t i) { return keep[static_cast<std::size_t>(i)] ? 0 : 1; });
     if (removed == 0) continue;
     for (std::size_t i = 0; i < ps.size(); ++i)
       if (!keep[i]) tally.deleted_mass += ps.mass[i];
@@ -141,13 +143,17 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& ta
   return removed_all;
 }
 
-template void accumulate_and_create<2>(std::vector<Level<2>>&, double, std::uint64_t&,
-                                       CouplingTally&);
-template void accumulate_and_create<3>(std::vector<Level<3>>&, double, std::uint64_t&,
-                                       CouplingTally&);
-template void update_kinds<2>(Level<2>&, CouplingTally&);
-template void update_kinds<3>(Level<3>&, CouplingTally&);
-template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&, CouplingTally&, double);
-template std::size_t interpolate_buffers<3>(std::vector<Level<3>>&, CouplingTally&, double);
+template void accumulate_and_create<2>(std::vector<Level<2>>&, std::vector<LevelLink<2>>&,
+                                       double, std::uint64_t&, CouplingTally&);
+template void accumulate_and_create<3>(std::vector<Level<3>>&, std::vector<LevelLink<3>>&,
+                                       double, std::uint64_t&, CouplingTally&);
+template void update_kinds<2>(Level<2>&, const LevelLink<2>&, CouplingTally&);
+template void update_kinds<3>(Level<3>&, const LevelLink<3>&, CouplingTally&);
+template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&,
+                                            const std::vector<LevelLink<2>>&, CouplingTally&,
+                                            double);
+template std::size_t interpolate_buffers<3>(std::vector<Level<3>>&,
+                                            const std::vector<LevelLink<3>>&, CouplingTally&,
+                                            double);
 
 }  // namespace vrsph

@@ -16,8 +16,17 @@
 #include <vector>
 
 #include "vrsph/solver/level.hpp"
+#include "vrsph/vres/region.hpp"
 
 namespace vrsph {
+
+// What variable resolution keeps per level beside the level itself: the part of space it owns
+// (fluid region, buffer shell, children) and the mass points on the outer faces of its buffers.
+template <int D>
+struct LevelLink {
+  LevelRegion<D> region;                  // single-resolution runs: level 0 owns everything
+  std::vector<MassPoint<D>> mass_points;  // where particles of this level are created
+};
 
 struct CouplingTally {
   std::uint64_t created = 0;
@@ -29,17 +38,18 @@ struct CouplingTally {
 // Step 1 for all levels (dt = 0: no accumulation). New particles are appended (unsorted) with
 // ids from next_id.
 template <int D>
-void accumulate_and_create(std::vector<Level<D>>& levels, double dt, std::uint64_t& next_id,
-                           CouplingTally& tally);
+void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
+                           double dt, std::uint64_t& next_id, CouplingTally& tally);
 
 // Step 2 for one level (particles are compacted; the level must be re-sorted afterwards).
 template <int D>
-void update_kinds(Level<D>& L, CouplingTally& tally);
+void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally);
 
 // Step 3 for all levels (needs sorted levels). Returns the number of deleted buffer particles
 // (the levels must then be re-sorted).
 template <int D>
-std::size_t interpolate_buffers(std::vector<Level<D>>& levels, CouplingTally& tally,
+std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
+                                const std::vector<LevelLink<D>>& links, CouplingTally& tally,
                                 double fill_min);
 
 }  // namespace vrsph

@@ -1,4 +1,4 @@
-#include "vrsph/solver/level_setup.hpp"
+#include "vrsph/sim/level_setup.hpp"
 
 #include <fmt/format.h>
 

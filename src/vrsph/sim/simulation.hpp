@@ -1,7 +1,9 @@
-// One simulation: the resolution levels (one without [[refinement]]), and the symplectic time
-// stepping of PHYSICS.md section 2 with one global dt, followed after every step by the coupling
-// of the levels (PHYSICS.md section 5, vres/coupling.hpp). The driver (run.cpp) owns outputs,
-// checkpoints and the progress line; this class only advances the physics and checks stability.
+// One simulation: the resolution levels (one without [[refinement]]), their coupling
+// (vres/level_coupling.hpp) and the scheduler that advances them: the symplectic step of
+// PHYSICS.md section 2 on every level with one global dt (solver/stepper.hpp), the coupling's
+// hooks in between. Local time stepping per level plugs in here (docs/architecture.md). The
+// driver (run.cpp) owns outputs, checkpoints and the progress line; this class only advances the
+// physics and checks stability.
 #pragma once
 
 #include <array>
@@ -17,6 +19,7 @@
 #include "vrsph/solver/params.hpp"
 #include "vrsph/solver/surface_pass.hpp"
 #include "vrsph/solver/timestep.hpp"
+#include "vrsph/vres/level_coupling.hpp"
 
 namespace vrsph {
 
@@ -51,6 +54,12 @@ struct PassTimes {
   double coupling = 0.0;  // variable resolution: mass points, kinds, buffer interpolation
 };
 
+// The length of the next step, and whether it ends exactly at the stop time.
+struct StepPlan {
+  double dt = 0.0;
+  bool lands = false;
+};
+
 // The resolved physical set-up shared by check and run.
 struct Setup {
   double c0 = 0.0;
@@ -80,6 +89,9 @@ class Simulation {
   std::size_t level_count() const { return levels_.size(); }
   Level<D>& level(std::size_t k) { return levels_[k]; }
   const Level<D>& level(std::size_t k) const { return levels_[k]; }
+  // Region and mass points of level k (variable resolution).
+  LevelLink<D>& link(std::size_t k) { return coupling_.link(k); }
+  const LevelLink<D>& link(std::size_t k) const { return coupling_.link(k); }
   RunCounters& counters() { return counters_; }
   const RunCounters& counters() const { return counters_; }
   const PassTimes& pass_times() const { return times_; }
@@ -98,7 +110,7 @@ class Simulation {
   std::size_t total_particles() const;
   std::size_t count(Kind k) const;
   // Fluid momentum sum m v over all levels (buffer and wall particles excluded); mass gets the
-  // fluid mass (solver/momentum.hpp).
+  // fluid mass (vres/momentum.hpp).
   Vec<D> fluid_momentum(double& mass) const;
 
   // Pressure of every particle from its current density (outputs).
@@ -115,21 +127,19 @@ class Simulation {
  private:
   void sort_particles(Level<D>& L);
   void sort_all();
-  void predictor(Level<D>& L, double dt);
-  void corrector(Level<D>& L, double dt);
   void check_state(const Level<D>& L) const;
   void check_dt() const;
   ForceStats evaluate_forces();
-  void remove_spurious_net_force(bool surface_tension);
   void surface_fields_all();
-  template <class T>
-  void exchange_buffer_surface_field(std::vector<T> SurfaceFields<D>::*field, double reach_h);
   DtChoice next_dt(const ForceStats& s) const;
   void couple_levels(double dt);
+  StepPlan plan_step() const;
+  void advance_clock(const StepPlan& plan, const ForceStats& s);
 
   CaseSpec spec_;
   Setup setup_;
   std::vector<Level<D>> levels_;
+  LevelCoupling<D> coupling_;
   double t_ = 0.0;
   double stop_time_ = 0.0;
   std::int64_t step_ = 0;

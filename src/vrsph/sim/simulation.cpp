@@ -1,0 +1,328 @@
+#include "vrsph/sim/simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <type_traits>
+
+#include "vrsph/setup/geometry.hpp"
+#include "vrsph/sim/level_setup.hpp"
+#include "vrsph/solver/stepper.hpp"
+#include "vrsph/vres/levels.hpp"
+#include "vrsph/vres/momentum.hpp"
+
+namespace vrsph {
+namespace {
+
+// "(x, y[, z])" with 6 significant digits, for diagnoses.
+template <int D>
+std::string position_text(const Vec<D>& x) {
+  std::string s = fmt::format("({:.6g}", x[0]);
+  for (int k = 1; k < D; ++k) s += fmt::format(", {:.6g}", x[k]);
+  return s + ")";
+}
+
+double now_seconds() {
+  using clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+template <int D>
+Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
+  const std::vector<LevelLayout<D>> layout = make_level_layout<D>(spec);
+  levels_.resize(layout.size());
+
+  // Speed of sound (common to all levels): given, or sound_speed_factor x max_speed, with
+  // max_speed = sqrt(g H) for gravity cases when not given (PHYSICS.md section 2). H and initial
+  // velocities come from the level-0 fill, which level 0 then takes its particles from.
+  InitialSet<D> init0 = level_fill<D>(spec, spec.dp);
+  {
+    setup_.fluid_height = init0.fluid_height;
+    const double g = norm(to_vec<D>(spec.gravity));
+    if (!spec.max_speed) {
+      if (g > 0.0 && setup_.fluid_height > 0.0) {
+        spec.max_speed = std::sqrt(g * setup_.fluid_height);
+      } else {
+        double vmax = 0.0;
+        for (const auto& v : init0.particles.vel) vmax = std::max(vmax, norm(v));
+        if (vmax > 0.0) spec.max_speed = vmax;
+      }
+    }
+  }
+  if (!spec.sound_speed && !spec.max_speed) {
+    throw std::invalid_argument(
+        "eos.max_speed: missing: needed to set the speed of sound when there is no gravity and no "
+        "initial velocity (give eos.max_speed or eos.sound_speed)");
+  }
+  setup_.max_speed = spec.max_speed.value_or(0.0);
+  setup_.c0 = spec.sound_speed ? *spec.sound_speed : spec.sound_speed_factor * *spec.max_speed;
+
+  std::uint64_t next_id = 0;
+  std::vector<LevelLink<D>> links(layout.size());
+  for (std::size_t k = 0; k < layout.size(); ++k) {
+    Level<D>& L = levels_[k];
+    L.prm = level_params<D>(spec, layout[k].dp, setup_.c0);
+    L.ps = level_particles<D>(spec, layout[k], L.prm, next_id,
+                              k == 0 ? std::move(init0) : level_fill<D>(spec, layout[k].dp));
+    next_id += L.ps.size();
+    links[k].region = layout[k].region;
+    links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
+  }
+  counters_.next_id = next_id;
+  const CouplingOptions opt{spec.vres_conserve_momentum, spec.zero_net_surface_force,
+                            spec.vres_buffer_fill_min};
+  coupling_ = LevelCoupling<D>(std::move(links), opt);
+
+  // One domain for all levels, from the level-0 particles.
+  Vec<D> lo, hi;
+  default_domain<D>(levels_[0].ps, levels_[0].prm.up, levels_[0].prm.h, lo, hi);
+  if (spec.domain_min) lo = to_vec<D>(*spec.domain_min);
+  if (spec.domain_max) hi = to_vec<D>(*spec.domain_max);
+  for (Level<D>& L : levels_) {
+    L.grid = CellGrid<D>(lo, hi, L.prm.kernel.support(), cells_per_support);
+    L.ps.resize(L.ps.size());
+    sort_particles(L);
+  }
+  initial_fluid_ = count(Kind::fluid);
+  stop_time_ = spec.end_time;
+  if (coupling_.multi_level()) couple_levels(0.0);  // buffer values from the other levels
+
+  // First step: the acoustic limit of a fluid at rest, with the viscous and capillary limits.
+  dt_next_ = 1e300;
+  for (const Level<D>& L : levels_) dt_next_ = std::min(dt_next_, level_dt_at_start(L, setup_.c0).dt);
+}
+
+template <int D>
+std::size_t Simulation<D>::total_particles() const {
+  std::size_t n = 0;
+  for (const Level<D>& L : levels_) n += L.ps.size();
+  return n;
+}
+
+template <int D>
+std::size_t Simulation<D>::count(Kind k) const {
+  std::size_t n = 0;
+  for (const Level<D>& L : levels_) n += L.ps.count(k);
+  return n;
+}
+
+template <int D>
+Vec<D> Simulation<D>::fluid_momentum(double& mass) const {
+  return vrsph::fluid_momentum(levels_, mass);
+}
+
+template <int D>
+void Simulation<D>::sort_particles(Level<D>& L) {
+  const double t0 = now_seconds();
+  const auto lost = L.grid.sort(L.ps);
+  times_.sort += now_seconds() - t0;
+  if (lost.empty()) return;
+  // Lost wall particles can only be a set-up error (walls never move).
+  counters_.lost_fluid += lost.size();
+  const double frac = static_cast<double>(counters_.lost_fluid) /
+                      static_cast<double>(std::max<std::size_t>(initial_fluid_, 1));
+  if (initial_fluid_ > 0 && frac > spec_.max_lost_fraction) {
+    throw InstabilityError(fmt::format(
+        "unstable at t = {:.6g} s, step {}: {} fluid particles ({:.3g}% of {}) have left the "
+        "domain (last: id {}) (check: domain, limit domain.max_lost_fraction = {})",
+        t_, step_, counters_.lost_fluid, 100.0 * frac, initial_fluid_, lost.back(),
+        spec_.max_lost_fraction));
+  }
+}
+
+template <int D>
+void Simulation<D>::sort_all() {
+  for (Level<D>& L : levels_) sort_particles(L);
+}
+
+template <int D>
+void Simulation<D>::resort() {
+  for (Level<D>& L : levels_) L.ps.resize(L.ps.size());
+  sort_all();
+}
+
+template <int D>
+void Simulation<D>::update_pressure() {
+  for (Level<D>& L : levels_) {
+    L.ps.p.resize(L.ps.size());
+    for (std::size_t i = 0; i < L.ps.size(); ++i) L.ps.p[i] = L.prm.eos.pressure(L.ps.rho[i]);
+  }
+}
+
+// Next dt: the minimum over levels (one global dt, PHYSICS.md section 5); `s` holds the maxima
+// of both stages over all levels, and the speeds are taken per level.
+template <int D>
+DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
+  DtChoice best{1e300, DtLimit{}};
+  bool first = true;
+  for (const Level<D>& L : levels_) {
+    const DtChoice c = level_dt(L, s, setup_.c0);
+    if (first || c.dt < best.dt) best = c;
+    first = false;
+  }
+  return best;
+}
+
+// The surface passes of every level (when surface tension or shifting is on), each pass on all
+// levels before the next, so that the coupling can give buffer particles lambda (after pass 1)
+// and the normal (after pass 2) from the other level before the next pass uses them.
+template <int D>
+void Simulation<D>::surface_fields_all() {
+  if (!has_surface_fields()) return;
+  const double t0 = now_seconds();
+  for (Level<D>& L : levels_) surface_pass_sums(L);
+  if (levels_[0].prm.sigma > 0.0) {
+    coupling_.after_surface_sums(levels_);
+    for (Level<D>& L : levels_) surface_pass_normals(L);
+    coupling_.after_normals(levels_);
+    for (Level<D>& L : levels_) surface_pass_curvature(L);
+  }
+  times_.surface += now_seconds() - t0;
+}
+
+// One force evaluation of all levels: the surface passes, then the pair forces of each level
+// with the surface-tension acceleration added, then the coupling's net-force corrections.
+template <int D>
+ForceStats Simulation<D>::evaluate_forces() {
+  for (Level<D>& L : levels_) pack_level(L);  // once, for every pass below
+  surface_fields_all();
+  const double t0 = now_seconds();
+  const bool st = levels_[0].prm.sigma > 0.0;
+  ForceStats s;
+  for (Level<D>& L : levels_) s.merge(level_forces(L, st, coupling_.wants_buffer_reaction()));
+  coupling_.after_forces(levels_, st);
+  times_.forces += now_seconds() - t0;
+  return s;
+}
+
+template <int D>
+void Simulation<D>::update_surface_fields() {
+  const double keep = times_.surface;  // output work, not stepping time
+  for (Level<D>& L : levels_) pack_level(L);
+  if (has_surface_fields()) {
+    surface_fields_all();
+  } else {
+    for (Level<D>& L : levels_) surface_pass_sums(L);
+  }
+  times_.surface = keep;
+}
+
+// The coupling after a step (or at the start, dt = 0): mass points, kind changes, buffer values.
+template <int D>
+void Simulation<D>::couple_levels(double dt) {
+  const double t0 = now_seconds();
+  const CouplingTally tally =
+      coupling_.after_step(levels_, dt, counters_.next_id, [this] { sort_all(); });
+  counters_.created += tally.created;
+  counters_.deleted += tally.deleted;
+  counters_.created_mass += tally.created_mass;
+  counters_.deleted_mass += tally.deleted_mass;
+  times_.coupling += now_seconds() - t0;
+}
+
+// The next step's length: dt_next(), shortened to land exactly on the stop time.
+template <int D>
+StepPlan Simulation<D>::plan_step() const {
+  const bool lands = stop_time_ > t_ && t_ + dt_next_ >= stop_time_;
+  return {lands ? stop_time_ - t_ : dt_next_, lands};
+}
+
+// One symplectic step of every level with one global dt, the coupling's hooks in between.
+template <int D>
+void Simulation<D>::step() {
+  const StepPlan plan = plan_step();
+  const double dt = plan.dt;
+  ForceStats s = evaluate_forces();  // at t
+  double t0 = now_seconds();
+  for (Level<D>& L : levels_) predictor(L, dt);
+  times_.update += now_seconds() - t0;
+  sort_all();
+  s.merge(evaluate_forces());  // at t + dt/2
+  coupling_.before_corrector(levels_);
+  t0 = now_seconds();
+  for (Level<D>& L : levels_) corrector(L, dt);
+  times_.update += now_seconds() - t0;
+  counters_.particle_steps += total_particles();
+  sort_all();
+  if (coupling_.multi_level()) couple_levels(dt);
+  t0 = now_seconds();
+  advance_clock(plan, s);
+  for (const Level<D>& L : levels_) check_state(L);
+  check_dt();
+  times_.checks += now_seconds() - t0;
+}
+
+// Time, step count and the next dt after the step `plan` with statistics s.
+template <int D>
+void Simulation<D>::advance_clock(const StepPlan& plan, const ForceStats& s) {
+  t_ = plan.lands ? stop_time_ : t_ + plan.dt;
+  ++step_;
+  dt_last_ = plan.dt;
+  counters_.pairs += s.pairs;
+  const DtChoice c = next_dt(s);
+  dt_next_ = c.dt;
+  ++counters_.dt_limit_counts[static_cast<std::size_t>(c.limit)];
+}
+
+// Stops the run with a diagnosis: non-finite values, or fluid density outside [0.5, 2] rho0.
+template <int D>
+void Simulation<D>::check_state(const Level<D>& L) const {
+  const ParticleSet<D>& ps = L.ps;
+  const double rho0 = L.prm.eos.rho0;
+  // The lowest failing index: the same report for any thread count.
+  const std::size_t i = first_unstable(L);
+  if (i < ps.size()) {
+    const bool is_finite = std::isfinite(ps.rho[i]) && std::isfinite(norm2(ps.vel[i])) &&
+                           std::isfinite(norm2(ps.pos[i]));
+    throw InstabilityError(fmt::format(
+        "unstable at t = {:.6g} s, step {}: {} particle id {} at {} {} (check: {})", t_, step_,
+        kind_name(ps.kind[i]), ps.id[i], position_text<D>(ps.pos[i]),
+        is_finite ? fmt::format("has density {:.6g} kg/m^3 outside [{:.6g}, {:.6g}]", ps.rho[i],
+                                0.5 * rho0, 2.0 * rho0)
+                  : std::string("has a non-finite position, velocity or density"),
+        is_finite ? "density" : "finite"));
+  }
+}
+
+// Stops the run when the global dt collapsed below 0.05 h / c0 of the finest level (the level
+// that sets dt; a coarser level's bound would fire on a legitimate fine-level step), naming the
+// fluid particle with the largest acceleration over all levels: where to look.
+template <int D>
+void Simulation<D>::check_dt() const {
+  double dt_min = 1e300;
+  for (const Level<D>& L : levels_) dt_min = std::min(dt_min, L.prm.dt_min);
+  if (dt_next_ >= dt_min) return;
+  std::string culprit = "the fastest particles or largest accelerations";
+  double amax = -1.0;
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const ParticleSet<D>& q = levels_[l].ps;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      if (q.kind[i] != Kind::fluid || norm(q.acc[i]) <= amax) continue;
+      amax = norm(q.acc[i]);
+      culprit = fmt::format("largest acceleration {:.3g} m/s^2 at fluid particle id {} of level {} at {}",
+                            amax, q.id[i], l, position_text<D>(q.pos[i]));
+    }
+  }
+  throw InstabilityError(fmt::format(
+      "unstable at t = {:.6g} s, step {}: time step {:.3g} s fell below 0.05 h/c0 = {:.3g} s "
+      "(check: dt; {})",
+      t_, step_, dt_next_, dt_min, culprit));
+}
+
+template <int D>
+void Simulation<D>::restore(double t, std::int64_t step, double dt_next, const RunCounters& c,
+                            std::size_t initial_fluid) {
+  t_ = t;
+  step_ = step;
+  dt_next_ = dt_next;
+  counters_ = c;
+  initial_fluid_ = initial_fluid;
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+
+}  // namespace vrsph

@@ -1,0 +1,155 @@
+#include "vrsph/solver/stepper.hpp"
+
+#include <cmath>
+
+#include "vrsph/exec/parallel.hpp"
+#include "vrsph/physics/shifting.hpp"
+#include "vrsph/physics/walls.hpp"
+
+namespace vrsph {
+
+template <int D>
+void pack_level(Level<D>& L) {
+  L.cols.pack(L.ps, L.prm.eos);
+}
+
+template <int D>
+void surface_pass_sums(Level<D>& L) {
+  surface_sums(L.prm, L.ps, L.grid, L.cols, L.sf);
+}
+
+template <int D>
+void surface_pass_normals(Level<D>& L) {
+  surface_normals(L.prm, L.ps, L.grid, L.cols, L.sf);
+}
+
+template <int D>
+void surface_pass_curvature(Level<D>& L) {
+  surface_curvature_force(L.prm, L.ps, L.grid, L.cols, L.sf);
+}
+
+template <int D>
+ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction) {
+  return compute_forces_packed(L.prm, L.ps, L.grid, L.cols,
+                               capillary ? L.sf.acc_st.data() : nullptr, buffer_reaction);
+}
+
+// Predictor (dt/2): x+ = x + dt/2 v, v+ = v + dt/2 (a + g), rho+ = rho + dt/2 drho.
+// Walls keep position and velocity; their density is clamped at >= rho0 (physics/walls.hpp).
+// Buffer particles move with their velocity; their v and rho are imposed (from another level,
+// PHYSICS.md section 5) and not integrated.
+template <int D>
+void predictor(Level<D>& L, double dt) {
+  ParticleSet<D>& ps = L.ps;
+  const double half = 0.5 * dt;
+  const double rho0 = L.prm.eos.rho0;
+  const Vec<D> g = L.prm.gravity;
+  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
+    ps.pos0[i] = ps.pos[i];
+    ps.vel0[i] = ps.vel[i];
+    ps.rho0[i] = ps.rho[i];
+    if (ps.kind[i] == Kind::buffer) {
+      ps.pos[i] += half * ps.vel[i];
+      return;
+    }
+    ps.rho[i] = ps.rho[i] + half * ps.drho[i];
+    if (ps.kind[i] == Kind::wall) {
+      ps.rho[i] = wall_density(ps.rho[i], rho0);
+      return;
+    }
+    ps.pos[i] += half * ps.vel[i];
+    ps.vel[i] += half * (ps.acc[i] + g);
+  });
+}
+
+// Corrector: v' = v + dt (a+ + g), x' = x + dt (v + v')/2 + dr_shift,
+// rho' = rho (2 - eps)/(2 + eps), eps = -(drho+/rho+) dt. Buffer particles: x' = x + dt v +
+// dr_shift without its component along L.buffer_shift_normal; v and rho unchanged.
+template <int D>
+void corrector(Level<D>& L, double dt) {
+  ParticleSet<D>& ps = L.ps;
+  const SolverParams<D>& prm = L.prm;
+  const double rho0 = prm.eos.rho0;
+  const bool shifting = prm.shifting.model != ShiftingModel::none;
+  const bool constrained = !L.buffer_shift_normal.empty();
+  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
+    if (ps.kind[i] == Kind::wall) {
+      const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
+      ps.rho[i] = wall_density(ps.rho0[i] * (2.0 - eps) / (2.0 + eps), rho0);
+      return;
+    }
+    if (shifting) {  // from the half-step sums and velocity
+      ps.shift[i] = shifting_displacement<D>(prm.shifting, L.sf.grad_c[i], L.sf.div_r[i],
+                                             norm(ps.vel[i]), dt);
+    }
+    if (ps.kind[i] == Kind::buffer) {
+      if (shifting && constrained) {
+        const Vec<D> nf = L.buffer_shift_normal[i];
+        ps.shift[i] -= dot(ps.shift[i], nf) * nf;
+      }
+      ps.rho[i] = ps.rho0[i];
+      ps.vel[i] = ps.vel0[i];
+      ps.pos[i] = ps.pos0[i] + dt * ps.vel0[i] + ps.shift[i];
+      return;
+    }
+    const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
+    ps.rho[i] = ps.rho0[i] * (2.0 - eps) / (2.0 + eps);
+    ps.vel[i] = ps.vel0[i] + dt * (ps.acc[i] + prm.gravity);
+    ps.pos[i] = ps.pos0[i] + (0.5 * dt) * (ps.vel0[i] + ps.vel[i]) + ps.shift[i];
+  });
+}
+
+template <int D>
+DtChoice level_dt(const Level<D>& L, const ForceStats& s, double c0) {
+  double vmax2 = 0.0;
+  for (std::size_t i = 0; i < L.ps.size(); ++i) {
+    if (L.ps.kind[i] != Kind::wall) vmax2 = std::max(vmax2, norm2(L.ps.vel[i]));
+  }
+  const DtInputs in{L.prm.h,       L.prm.cfl, c0,         s.max_acc,     std::sqrt(vmax2),
+                    s.max_visc_dt, L.prm.nu,  L.prm.eos.rho0, L.prm.sigma};
+  return choose_dt(in);
+}
+
+template <int D>
+DtChoice level_dt_at_start(const Level<D>& L, double c0) {
+  DtInputs in{L.prm.h, L.prm.cfl, c0, 0.0, 0.0, 0.0, L.prm.nu, L.prm.eos.rho0, L.prm.sigma};
+  for (const auto& v : L.ps.vel) in.max_speed = std::max(in.max_speed, norm(v));
+  return choose_dt(in);
+}
+
+template <int D>
+std::size_t first_unstable(const Level<D>& L) {
+  const ParticleSet<D>& ps = L.ps;
+  const double rho0 = L.prm.eos.rho0;
+  auto bad = [&](std::int64_t ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if (ps.kind[i] == Kind::wall) return false;
+    const bool finite = std::isfinite(ps.rho[i]) && std::isfinite(norm2(ps.vel[i])) &&
+                        std::isfinite(norm2(ps.pos[i]));
+    return !finite || ps.rho[i] < 0.5 * rho0 || ps.rho[i] > 2.0 * rho0;
+  };
+  return static_cast<std::size_t>(exec::first_index(static_cast<std::int64_t>(ps.size()), bad));
+}
+
+template void pack_level<2>(Level<2>&);
+template void pack_level<3>(Level<3>&);
+template void surface_pass_sums<2>(Level<2>&);
+template void surface_pass_sums<3>(Level<3>&);
+template void surface_pass_normals<2>(Level<2>&);
+template void surface_pass_normals<3>(Level<3>&);
+template void surface_pass_curvature<2>(Level<2>&);
+template void surface_pass_curvature<3>(Level<3>&);
+template ForceStats level_forces<2>(Level<2>&, bool, bool);
+template ForceStats level_forces<3>(Level<3>&, bool, bool);
+template void predictor<2>(Level<2>&, double);
+template void predictor<3>(Level<3>&, double);
+template void corrector<2>(Level<2>&, double);
+template void corrector<3>(Level<3>&, double);
+template DtChoice level_dt<2>(const Level<2>&, const ForceStats&, double);
+template DtChoice level_dt<3>(const Level<3>&, const ForceStats&, double);
+template DtChoice level_dt_at_start<2>(const Level<2>&, double);
+template DtChoice level_dt_at_start<3>(const Level<3>&, double);
+template std::size_t first_unstable<2>(const Level<2>&);
+template std::size_t first_unstable<3>(const Level<3>&);
+
+}  // namespace vrsph

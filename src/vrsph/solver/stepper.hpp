@@ -1,0 +1,52 @@
+// The stepper of one level: the stages of one symplectic step (PHYSICS.md section 2) of a level at
+// a dt it is given. It knows nothing of other levels: variable resolution calls its stages in
+// order and exchanges buffer data between them (vres/level_coupling.hpp), and the scheduler
+// (sim/simulation.cpp) decides the dt.
+#pragma once
+
+#include <cstdint>
+
+#include "vrsph/solver/forces.hpp"
+#include "vrsph/solver/level.hpp"
+#include "vrsph/solver/timestep.hpp"
+
+namespace vrsph {
+
+// Packs the level's state into its columns (and fills ps.p): first stage of a force evaluation.
+template <int D>
+void pack_level(Level<D>& L);
+
+// The surface passes on the packed columns: 1 (correction matrix, lambda, grad C, div r, Shepard),
+// 2 (normals), 3 (curvature and capillary acceleration).
+template <int D>
+void surface_pass_sums(Level<D>& L);
+template <int D>
+void surface_pass_normals(Level<D>& L);
+template <int D>
+void surface_pass_curvature(Level<D>& L);
+
+// Pair forces on the packed columns, with the capillary acceleration added when `capillary`;
+// buffer_reaction as in compute_forces_packed.
+template <int D>
+ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction);
+
+// Predictor (dt/2) and corrector (dt) of the symplectic scheme.
+template <int D>
+void predictor(Level<D>& L, double dt);
+template <int D>
+void corrector(Level<D>& L, double dt);
+
+// The dt this level allows after a force evaluation with statistics s (its own speeds).
+template <int D>
+DtChoice level_dt(const Level<D>& L, const ForceStats& s, double c0);
+
+// The dt a level at rest allows (first step): acoustic, viscous and capillary limits.
+template <int D>
+DtChoice level_dt_at_start(const Level<D>& L, double c0);
+
+// The lowest index of a non-wall particle with a non-finite state or a density outside
+// [0.5, 2] rho0, or ps.size() when there is none.
+template <int D>
+std::size_t first_unstable(const Level<D>& L);
+
+}  // namespace vrsph

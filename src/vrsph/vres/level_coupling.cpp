@@ -1,0 +1,123 @@
+#include "vrsph/vres/level_coupling.hpp"
+
+#include <type_traits>
+
+#include "vrsph/exec/parallel.hpp"
+#include "vrsph/vres/interpolation.hpp"
+#include "vrsph/vres/momentum.hpp"
+
+namespace vrsph {
+namespace {
+
+// Reach, in h of the level, of a buffer particle's own lambda and normal (see
+// exchange_buffer_field).
+constexpr double kBufferLambdaReach = 1.0;
+constexpr double kBufferNormalReach = 2.0;
+
+}  // namespace
+
+// Surface-tension quantities of buffer particles near the outer edge of their shell. A buffer
+// particle's own lambda sums over neighbours within 2h, and its normal over their lambda: where
+// that reach goes past the shell (depth + reach > shell width), its own value sees a free surface
+// that is not there and bends the normals and the curvature of the fluid next to the interface.
+// Those particles take the value from the other level's fluid (Shepard average), where the
+// support is full: the remedy the poster proposes for the lambda mismatch across the interface.
+// Buffer particles closer to the fluid keep their own values, which match their own level
+// (lambda rises from 1/2 to 1 over about 2h of each level; an averaged lambda from the other
+// level has the other level's profile, and averaged normals are not consistent enough with the
+// level's own for the curvature, which differences neighbouring normals).
+// The reaches (1h for lambda, 2h for normals) were chosen by measurement on the 2D VR droplet
+// (docs/validation.md, "buffer surface fields"), not derived. An averaged normal keeps its
+// direction where most of the donor weight has a normal (|average| >= 1/2), and is zero
+// otherwise.
+template <int D>
+template <class T>
+void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels,
+                                             std::vector<T> SurfaceFields<D>::*field,
+                                             double reach_h) const {
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    Level<D>& L = levels[l];
+    const LevelRegion<D>& region = links_[l].region;
+    std::vector<T>& own = L.sf.*field;
+    exec::for_each_dynamic(static_cast<std::int64_t>(L.ps.size()), 64, [&](std::int64_t ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (L.ps.kind[i] != Kind::buffer) return;
+      const ZoneInfo<D> z = region.classify(L.ps.pos[i]);
+      if (z.donor < 0) return;  // moved into the fluid region during the step: kind changes later
+      if (z.depth + reach_h * L.prm.h <= z.width) return;  // own support inside fluid + shell
+      const Level<D>& dl = levels[static_cast<std::size_t>(z.donor)];
+      T v = shepard_field<D, T>(L.ps.pos[i], dl.ps, dl.grid, dl.prm.kernel, dl.sf.*field, T{});
+      if constexpr (std::is_same_v<T, Vec<D>>) {
+        const double m = norm(v);
+        v = m >= 0.5 ? v * (1.0 / m) : Vec<D>{};
+      }
+      own[i] = v;
+    });
+  }
+}
+
+template <int D>
+void LevelCoupling<D>::after_surface_sums(std::vector<Level<D>>& levels) const {
+  if (multi_level()) exchange_buffer_field(levels, &SurfaceFields<D>::lambda, kBufferLambdaReach);
+}
+
+template <int D>
+void LevelCoupling<D>::after_normals(std::vector<Level<D>>& levels) const {
+  if (multi_level()) exchange_buffer_field(levels, &SurfaceFields<D>::normal, kBufferNormalReach);
+}
+
+// The optional corrections of momentum.hpp: the net coupling force F_c (variable resolution) and
+// the net capillary force F_st, removed as a uniform acceleration of the fluid.
+template <int D>
+void LevelCoupling<D>::after_forces(std::vector<Level<D>>& levels, bool capillary) const {
+  const bool coupling = wants_buffer_reaction();
+  const bool net_st = opt_.zero_net_surface_force && capillary;
+  if (!coupling && !net_st) return;
+  Vec<D> f{};
+  if (coupling) f += coupling_net_force(levels);
+  if (net_st) f += surface_net_force(levels);
+  double mass = 0.0;
+  fluid_momentum(levels, mass);
+  if (mass > 0.0) add_to_fluid(levels, f * (-1.0 / mass), false);
+}
+
+template <int D>
+void LevelCoupling<D>::before_corrector(std::vector<Level<D>>& levels) const {
+  if (!multi_level()) return;
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    Level<D>& L = levels[l];
+    const LevelRegion<D>& region = links_[l].region;
+    L.buffer_shift_normal.resize(L.ps.size());
+    exec::for_each(static_cast<std::int64_t>(L.ps.size()), [&](std::int64_t i) {
+      L.buffer_shift_normal[i] =
+          L.ps.kind[i] == Kind::buffer ? region.classify(L.ps.pos0[i]).face_normal : Vec<D>{};
+    });
+  }
+}
+
+// Variable resolution after a step (PHYSICS.md section 5): mass points, kind changes and
+// deletions, then buffer values from the other levels; with conserve_momentum, the fluid
+// momentum jump of the kind changes is removed as a uniform velocity (momentum.hpp).
+template <int D>
+CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double dt,
+                                           std::uint64_t& next_id,
+                                           const std::function<void()>& sort) {
+  CouplingTally tally;
+  if (!multi_level()) return tally;
+  double mass = 0.0;
+  const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
+  accumulate_and_create(levels, links_, dt, next_id, tally);
+  for (std::size_t l = 0; l < levels.size(); ++l) update_kinds(levels[l], links_[l], tally);
+  sort();
+  if (interpolate_buffers(levels, links_, tally, opt_.buffer_fill_min) > 0) sort();
+  if (opt_.conserve_momentum) {
+    const Vec<D> dp = fluid_momentum(levels, mass) - p_before;
+    if (mass > 0.0) add_to_fluid(levels, dp * (-1.0 / mass), true);
+  }
+  return tally;
+}
+
+template class LevelCoupling<2>;
+template class LevelCoupling<3>;
+
+}  // namespace vrsph

@@ -1,0 +1,63 @@
+// The coupling of the resolution levels of one simulation (PHYSICS.md section 5), as one object
+// the scheduler (sim/simulation.cpp) calls through a few named hooks, in this order per force
+// evaluation and step:
+//   after_surface_sums -> after_normals -> after_forces      (each force evaluation)
+//   before_corrector -> after_step                           (each step)
+// It owns what ties levels together: regions, buffer shells and mass points (vres/coupling.hpp),
+// the exchange of surface fields into buffer shells, and the optional net-force and momentum
+// corrections (vres/momentum.hpp), which also serve a single level (zero_net_force on a drop).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "vrsph/solver/level.hpp"
+#include "vrsph/vres/coupling.hpp"
+
+namespace vrsph {
+
+struct CouplingOptions {
+  bool conserve_momentum = false;       // numerics.vres_conserve_momentum
+  bool zero_net_surface_force = false;  // numerics.surface_tension.zero_net_force
+  double buffer_fill_min = 0.0;         // numerics.vres_buffer_fill_min
+};
+
+template <int D>
+class LevelCoupling {
+ public:
+  LevelCoupling() = default;
+  LevelCoupling(std::vector<LevelLink<D>> links, const CouplingOptions& opt)
+      : links_(std::move(links)), opt_(opt) {}
+
+  bool multi_level() const { return links_.size() > 1; }
+  // Whether the force pass must give buffer particles their reaction (momentum.hpp).
+  bool wants_buffer_reaction() const { return opt_.conserve_momentum && multi_level(); }
+  const LevelLink<D>& link(std::size_t k) const { return links_[k]; }
+  LevelLink<D>& link(std::size_t k) { return links_[k]; }
+
+  // After surface pass 1: lambda of buffer particles near the outer edge of their shell from the
+  // donor level. After pass 2: the same for the normal.
+  void after_surface_sums(std::vector<Level<D>>& levels) const;
+  void after_normals(std::vector<Level<D>>& levels) const;
+  // After the pair forces: removes the net coupling force and/or net capillary force (capillary:
+  // surface tension is on) as a uniform acceleration of the fluid.
+  void after_forces(std::vector<Level<D>>& levels, bool capillary) const;
+  // Before the corrector: the interface normal along which buffer particles are not shifted.
+  void before_corrector(std::vector<Level<D>>& levels) const;
+  // After a step of dt (0: at start): mass points, kind changes, deletions and buffer values;
+  // `sort` re-sorts every level (and counts what left the domain). Returns what was created and
+  // deleted; new particles take ids from next_id.
+  CouplingTally after_step(std::vector<Level<D>>& levels, double dt, std::uint64_t& next_id,
+                           const std::function<void()>& sort);
+
+ private:
+  template <class T>
+  void exchange_buffer_field(std::vector<Level<D>>& levels, std::vector<T> SurfaceFields<D>::*field,
+                             double reach_h) const;
+
+  std::vector<LevelLink<D>> links_;
+  CouplingOptions opt_;
+};
+
+}  // namespace vrsph
