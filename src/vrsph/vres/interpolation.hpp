@@ -54,11 +54,8 @@ struct InterpolatedState {
   double shepard = 0.0;    // sum_j V_j W(x - x_j): donor support; < 0.05 means no fluid here
   double div_r = 0.0;      // -sum_j V_j (x - x_j) . grad W: about D inside the fluid, about D/2
                            // on a flat free surface (the free-surface test)
-  double nearest = 1e300;    // distance to the nearest fluid donor (m)
   double shepard_walls = 0.0;  // sum_j V_j W(x - x_j) over the donor level's wall particles
   double shepard_buffer = 0.0;  // the same over the donor level's buffer particles
-  double div_r_walls = 0.0;  // the same sum over the donor level's wall particles: a point
-                             // next to a wall is inside the fluid when div_r + div_r_walls is
   bool corrected = false;  // true: first-order corrected; false: Shepard fallback (or no support)
   double cond = 0.0;       // dimensionless cond_inf(A) (infinity: singular; 0: no support)
 };
