@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "vrsph/core/to_vec.hpp"
+
 namespace vrsph {
 namespace {
 

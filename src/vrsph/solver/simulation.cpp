@@ -7,6 +7,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "vrsph/core/to_vec.hpp"
 #include "vrsph/physics/pair_terms.hpp"
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/setup/geometry.hpp"
