@@ -18,6 +18,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "vrsph/core/to_vec.hpp"
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/setup/case_spec.hpp"

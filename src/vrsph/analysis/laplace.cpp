@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "vrsph/core/to_vec.hpp"
 #include "vrsph/output/line_profile.hpp"
-#include "vrsph/setup/geometry.hpp"
 
 namespace vrsph {
 

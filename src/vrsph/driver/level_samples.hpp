@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "vrsph/analysis/laplace.hpp"
+#include "vrsph/core/to_vec.hpp"
 #include "vrsph/output/line_profile.hpp"
-#include "vrsph/setup/geometry.hpp"
 #include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {

@@ -77,7 +77,6 @@ class PvdCollection {
   void write() const;
 
   const std::vector<Entry>& entries() const { return entries_; }
-  const std::filesystem::path& path() const { return path_; }
 
  private:
   std::filesystem::path path_;

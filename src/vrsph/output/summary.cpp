@@ -1,4 +1,4 @@
-// summary.json writer and path helpers (see summary.hpp).
+// summary.json writer and JSON reader (see summary.hpp).
 #include "vrsph/output/summary.hpp"
 
 #include <stdexcept>
@@ -18,13 +18,6 @@ nlohmann::json read_json_file(const std::filesystem::path& path) {
   } catch (const nlohmann::json::parse_error& e) {
     throw std::runtime_error(path.string() + ": " + e.what());
   }
-}
-
-std::filesystem::path resolved_path(const std::filesystem::path& file) {
-  std::error_code ec;
-  std::filesystem::path p = std::filesystem::weakly_canonical(file, ec);
-  if (ec) return file;
-  return p;
 }
 
 }  // namespace vrsph

@@ -1,5 +1,5 @@
 // summary.json (written at the end of a run; the caller builds the JSON, see CONTRACT.md) and
-// small helpers for paths inside the output folder.
+// reading a JSON file back.
 #pragma once
 
 #include <filesystem>
@@ -13,9 +13,5 @@ void write_summary_json(const std::filesystem::path& path, const nlohmann::json&
 // Reads a JSON file (e.g. a previous summary.json when resuming); throws std::runtime_error with
 // the path on I/O or parse errors.
 nlohmann::json read_json_file(const std::filesystem::path& path);
-
-// `file` made absolute and normal (for recording where the case and the outputs are);
-// the path is returned unchanged when it cannot be resolved.
-std::filesystem::path resolved_path(const std::filesystem::path& file);
 
 }  // namespace vrsph

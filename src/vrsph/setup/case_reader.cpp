@@ -266,10 +266,4 @@ void TableReader::fail_missing_reason(std::string_view key, std::string_view rea
   throw CaseError(fmt::format("{}{}: {}", location_of(where, source_), key_path(key), reason));
 }
 
-void TableReader::fail_table(std::string_view reason) const {
-  const toml::node* where = path_.empty() ? nullptr : tbl_;
-  throw CaseError(fmt::format("{}{}: {}", location_of(where, source_),
-                              path_.empty() ? "case file" : path_, reason));
-}
-
 }  // namespace vrsph::case_detail

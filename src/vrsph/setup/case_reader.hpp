@@ -84,8 +84,6 @@ class TableReader {
   // Checks that every key of tbl is in `keys` (CaseError otherwise); tbl may be null.
   TableReader(const toml::table* tbl, std::string path, std::string source, Keys keys);
 
-  const std::string& path() const { return path_; }
-  bool present() const { return tbl_ != nullptr; }
   bool has(std::string_view key) const { return node(key) != nullptr; }
   // "section.key" (or "key" at the root).
   std::string key_path(std::string_view key) const;
@@ -122,8 +120,6 @@ class TableReader {
   // CaseError "<where><path.key> = <value>: <reason>" (value omitted when the key is absent).
   [[noreturn]] void fail(std::string_view key, std::string_view reason) const;
   [[noreturn]] void fail_missing(std::string_view key) const;
-  // CaseError about the table itself ("<where><path>: <reason>").
-  [[noreturn]] void fail_table(std::string_view reason) const;
 
  private:
   const toml::node* node(std::string_view key) const;

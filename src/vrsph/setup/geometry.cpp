@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "vrsph/core/to_vec.hpp"
+
 namespace vrsph {
 namespace {
 
@@ -18,7 +20,8 @@ long steps_between(double a, double b, double dp) {
 // min + k dp rounded once (std::fma), so it does not depend on whether the compiler contracts the
 // product and sum: nodes meant to lie on a refinement box's face (a half-open box) must land on
 // the same side in every build. Rounded twice, 0.01 + 9 x 0.01 gives 0.09999999999999999 and a
-// fine level's first row fell outside its box (VresStillTank lost 1% of its fluid).
+// fine level's first row can fall outside its box (docs/validation.md, "Figures formerly in code
+// comments").
 template <int D, class Fn>
 void for_each_node(const Vec<D>& min, const Vec<D>& max, double dp, Fn&& fn) {
   std::array<long, 3> n{1, 1, 1};
@@ -63,11 +66,11 @@ void fill_ball_lattice(const Vec<D>& c, double radius, double dp, Fn&& fn) {
 // Concentric rings at radii (k + 1/2) dp, each with round(2 pi r / dp) equally spaced particles.
 // Ring k is turned by frac(k^2 g) of its own spacing, g = (sqrt 5 - 1) / 2. Were every ring
 // started at theta = 0, all rings would have a particle on the +x ray, a radially aligned seam
-// that seeds every cos(n theta) shape mode of a drop (measured at dp = 2e-5: n = 1..4 cosine
-// amplitudes 100-400 times the sine ones at 0.01 s; docs/validation.md). A turn linear in k
-// (k g) only moves the seam: ring counts grow by about 6 per ring, so rays at 2 pi (g + m) / 6
-// line up 39 rings in a row at R/dp = 100. The quadratic sequence's increments (2k + 1) g vary
-// irrationally, which leaves no chain of radially aligned particles longer than a few rings.
+// that seeds every cos(n theta) shape mode of a drop. A turn linear in k (k g) only moves the
+// seam: ring counts grow by about 6 per ring, so long chains of rings still line up along the
+// rays at 2 pi (g + m) / 6. The quadratic sequence's increments (2k + 1) g vary irrationally,
+// which leaves no chain of radially aligned particles longer than a few rings. Measured effect
+// of the seam: docs/validation.md, "Figures formerly in code comments".
 template <class Fn>
 void fill_circle_rings(const Vec<2>& c, double radius, double dp, Fn&& fn) {
   const double golden = 0.5 * (std::sqrt(5.0) - 1.0);

@@ -33,11 +33,4 @@ template <int D>
 void apply_hydrostatic_density(ParticleSet<D>& ps, const Vec<D>& gravity, double rho0, double dp,
                                const TaitEos& eos);
 
-template <int D>
-Vec<D> to_vec(const Vec3d& a) {
-  Vec<D> v;
-  for (int k = 0; k < D; ++k) v[k] = a[static_cast<std::size_t>(k)];
-  return v;
-}
-
 }  // namespace vrsph

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "vrsph/core/to_vec.hpp"
 #include "vrsph/physics/density_diffusion.hpp"
 #include "vrsph/setup/geometry.hpp"
 

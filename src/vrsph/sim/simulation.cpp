@@ -6,6 +6,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "vrsph/core/to_vec.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/sim/level_setup.hpp"
 #include "vrsph/solver/stepper.hpp"

@@ -39,8 +39,6 @@ struct SolverParams {
   bool curvature_correction = false;  // corrected_curvature() in step 3
   ShiftingParams shifting;
   double dt_min = 0.0;    // 0.05 h / c0 (DualSPHysics CoefDtMin): below this the run is unstable
-
-  double height(const Vec<D>& x) const { return dot(x, up); }
 };
 
 }  // namespace vrsph

@@ -61,10 +61,9 @@ void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<
       // sum_j V_j W, walls counted (next to a wall the fluid sum alone falls to about 1/2 where
       // the element is full). Across a free surface the smoothed indicator integrates to the
       // fluid's true thickness, so the accumulated flux neither drops the top layers of a flow
-      // (as a yes/no free-surface test on div r did: -5% on a uniform flow through a face, -6%
-      // in the 3D dam break) nor counts whole elements half in air. Inside the fluid it is about
-      // 1 (1.010 on lattice nodes, 0.993 between them, exactly 1 on average). Points inside a
-      // wall (the wall sum exceeds the fluid sum) accumulate nothing.
+      // (as a yes/no free-surface test on div r did) nor counts whole elements half in air.
+      // Inside the fluid it is about 1. Points inside a wall (the wall sum exceeds the fluid sum)
+      // accumulate nothing. Measured: docs/validation.md, "Figures formerly in code comments".
       if (s.shepard < kVresShepardMin || s.shepard_walls > s.shepard) continue;
       const double fill = s.shepard + s.shepard_walls;
       P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), fill * P.area, dt);
@@ -121,10 +120,10 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
       // No donor fluid in reach, or (numerics.vres_buffer_fill_min > 0, not part of Ricci et
       // al.) outside the donor's free surface. Buffer particles follow the donor's velocity and
       // nothing pulls them back to its surface: without the second test, those carried beyond
-      // it stay there, and the level's surface can stand proud where it crosses the interface
-      // (2D VR droplet: fine buffer particles one coarse spacing above the coarse surface from
-      // 0.26 s, the fine fluid next to them 0.07 mm above the circle, the drop's pressure 3-5%
-      // low). On the relaxing square drop the same test dented the top crossing instead.
+      // it stay there, and the level's surface can stand proud where it crosses the interface,
+      // which lowers the drop's pressure (2D VR droplet; docs/validation.md, "Figures formerly
+      // in code comments"). On the relaxing square drop the same test dented the top crossing
+      // instead.
       if (s.shepard < kVresShepardMin || donor_fill(s) < fill_min) {
         keep[i] = 0;
         return;

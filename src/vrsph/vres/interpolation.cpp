@@ -44,7 +44,6 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
   std::int64_t c = 0;
   if (donors.size() == 0 || !grid.stencil_cell(x, c)) return out;
   DonorSums<D> s;
-  double nearest2 = 1e300;
   grid.for_each_run(c, Group::fluid, [&](std::uint32_t begin, std::uint32_t end) {
     for (std::uint32_t j = begin; j < end; ++j) {
       const Vec<D> r = x - donors.pos[j];
@@ -54,12 +53,10 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
         out.shepard_buffer += donors.mass[j] / donors.rho[j] * kernel.w(std::sqrt(r2));
         continue;
       }
-      nearest2 = std::min(nearest2, r2);
       s.add(r, r2, donors.mass[j] / donors.rho[j], donors.rho[j], donors.vel[j], kernel);
     }
   });
   out.shepard = s.a[0][0];
-  out.nearest = std::sqrt(nearest2);
   out.div_r = s.div_r;
   grid.for_each_run(c, Group::wall, [&](std::uint32_t begin, std::uint32_t end) {
     for (std::uint32_t j = begin; j < end; ++j) {
@@ -67,7 +64,6 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
       const double r2 = norm2(r);
       if (r2 >= kernel.support2) continue;
       const double v = donors.mass[j] / donors.rho[j];
-      out.div_r_walls -= v * kernel.f(std::sqrt(r2)) * r2;
       out.shepard_walls += v * kernel.w(std::sqrt(r2));
     }
   });

@@ -24,9 +24,9 @@
 // The dimensionless form matters: written in metres, A has entries of order 1, h and 1/h, and a
 // plain ||A|| ||A^-1|| would be about 1 in the bulk but grow like 1/h^2 near an edge
 // (DualSPHysics rescales its estimate by a power of h instead). With the diagonal scaling the
-// number does not depend on the units: about 1.1 in the bulk of a regular lattice, under 2 in a
-// lattice jittered by 0.25 dp, 20 - 30 on a flat face, over 100 from about 0.5 dp beyond a face
-// (h = 1.3 dp; tests/test_vres_interpolation.cpp).
+// number does not depend on the units: it is of order 1 in the bulk, larger on a free surface,
+// and passes the limit a little beyond it (values: docs/validation.md, "Figures formerly in code
+// comments"; tests/test_vres_interpolation.cpp).
 //
 // Only Kind::fluid donors count: buffer particles (themselves interpolated) and walls are skipped.
 // The donor grid must have been sorted since the donor particles last moved, as for every pass.
@@ -54,11 +54,8 @@ struct InterpolatedState {
   double shepard = 0.0;    // sum_j V_j W(x - x_j): donor support; < 0.05 means no fluid here
   double div_r = 0.0;      // -sum_j V_j (x - x_j) . grad W: about D inside the fluid, about D/2
                            // on a flat free surface (the free-surface test)
-  double nearest = 1e300;    // distance to the nearest fluid donor (m)
   double shepard_walls = 0.0;  // sum_j V_j W(x - x_j) over the donor level's wall particles
   double shepard_buffer = 0.0;  // the same over the donor level's buffer particles
-  double div_r_walls = 0.0;  // the same sum over the donor level's wall particles: a point
-                             // next to a wall is inside the fluid when div_r + div_r_walls is
   bool corrected = false;  // true: first-order corrected; false: Shepard fallback (or no support)
   double cond = 0.0;       // dimensionless cond_inf(A) (infinity: singular; 0: no support)
 };
@@ -68,14 +65,14 @@ inline constexpr double kVresCondLimit = 100.0;   // above: Shepard fallback
 
 // Smoothed fill of the donor level at a point: sum_j V_j W over all its particles (fluid, buffer
 // and walls; next to the interface the donor's buffer completes the support, where its fluid alone
-// sums to about 1/2). About 1 inside the fluid, it falls through 1/2 at a free surface: on a flat
-// lattice face (h = 1.3 dp) it is 0.66, 0.50 and 0.35 at dp/4 inside, on and dp/4 outside the
-// plane dp/2 beyond the outer row. Below 1/2 a point lies outside the donor's fluid.
+// sums to about 1/2). About 1 inside the fluid, it falls through 1/2 at a free surface (on a flat
+// lattice face, near the plane dp/2 beyond the outer row). Below 1/2 a point lies outside the
+// donor's fluid.
 // With numerics.vres_buffer_fill_min > 0, buffer particles are deleted below that fill (0.4 in
 // cases/droplet_vr_2d.toml, a little outside the surface): the outer buffer row of a finer level
-// sits at about 0.66 and its fill moves with the particle disorder, and deleting at 1/2 (with
-// creation also restricted to fill >= 1/2) stirred the VR droplet (largest speed 0.02-0.11 m/s
-// against 0.002-0.006 m/s).
+// sits not far above 1/2 and its fill moves with the particle disorder, and deleting at 1/2 (with
+// creation also restricted to fill >= 1/2) stirred the VR droplet. Values: docs/validation.md,
+// "Figures formerly in code comments".
 
 template <int D>
 inline double donor_fill(const InterpolatedState<D>& s) {

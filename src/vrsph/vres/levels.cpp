@@ -6,7 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "vrsph/setup/geometry.hpp"
+#include "vrsph/core/to_vec.hpp"
 
 namespace vrsph {
 namespace {
