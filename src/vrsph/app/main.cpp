@@ -36,47 +36,92 @@ void check_resume_overrides(const std::vector<std::string>& sets) {
   }
 }
 
+// Everything the command line can set.
+struct CliArgs {
+  std::string case_path, out_dir, resume_dir, json_out;
+  std::vector<std::string> sets;
+  int threads = 0, cells = 2, halt_after = -1;
+  bool quiet = false, force = false;
+  double bench_time = 0.05;
+};
+
+CLI::App* add_run_command(CLI::App& app, CliArgs& a) {
+  CLI::App* run = app.add_subcommand("run", "run a case (or resume a stopped run)");
+  run->add_option("case", a.case_path, "case file (TOML)");
+  run->add_option("--out", a.out_dir, "output folder (default out/<case name>)");
+  run->add_option("--resume", a.resume_dir, "continue the run in this folder from its checkpoint");
+  run->add_option("--threads", a.threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 4096).description("an integer >= 1"));
+  run->add_option("--set", a.sets, "override a case key: KEY=VALUE (repeatable)");
+  run->add_flag("--quiet", a.quiet, "no progress line and no start/end summaries");
+  run->add_flag("--force", a.force, "overwrite an earlier run in the output folder");
+  run->add_option("--cells-per-support", a.cells, "neighbour cells per 2h (1 full, 2 half)")
+      ->check(CLI::Range(1, 4));
+  run->add_option("--halt-after-output", a.halt_after,
+                  "testing aid: stop abruptly right after writing snapshot K (as a kill would)")
+      ->group("");  // hidden from --help
+  return run;
+}
+
+CLI::App* add_check_command(CLI::App& app, CliArgs& a) {
+  CLI::App* check = app.add_subcommand("check", "validate a case and report particle counts and dt");
+  check->add_option("case", a.case_path, "case file (TOML)")->required();
+  check->add_option("--set", a.sets, "override a case key: KEY=VALUE (repeatable)");
+  return check;
+}
+
+CLI::App* add_bench_command(CLI::App& app, CliArgs& a) {
+  CLI::App* bench =
+      app.add_subcommand("bench", "time a case without outputs (default: the benchmark case)");
+  bench->add_option("case", a.case_path, "case file (default cases/bench_dam_break_2d.toml)");
+  bench->add_option("--time", a.bench_time, "simulated time in s")->check(CLI::PositiveNumber);
+  bench->add_option("--threads", a.threads, "OpenMP threads")
+      ->check(CLI::Range(1, 4096).description("an integer >= 1"));
+  bench->add_option("--set", a.sets, "override a case key: KEY=VALUE (repeatable)");
+  bench->add_option("--json", a.json_out, "also write the figures to this JSON file");
+  bench->add_option("--cells-per-support", a.cells, "neighbour cells per 2h (1 full, 2 half)")
+      ->check(CLI::Range(1, 4));
+  return bench;
+}
+
+int run_command(const CliArgs& a) {
+  RunOptions ro;
+  ro.threads = a.threads;
+  ro.quiet = a.quiet;
+  ro.force = a.force;
+  ro.cells_per_support = a.cells;
+  ro.halt_after_output = a.halt_after;
+  if (!a.resume_dir.empty()) {
+    if (!a.case_path.empty()) throw CaseError("run: give either a case file or --resume DIR, not both");
+    if (!a.out_dir.empty()) throw CaseError("run: --out cannot be combined with --resume (the run continues in DIR)");
+    check_resume_overrides(a.sets);
+    ro.resume = true;
+    ro.out_dir = a.resume_dir;
+    return run_case(load_case((std::filesystem::path(a.resume_dir) / "case.toml").string(), a.sets), ro);
+  }
+  if (a.case_path.empty()) throw CaseError("run: a case file (or --resume DIR) is required");
+  CaseSpec spec = load_case(a.case_path, a.sets);
+  ro.out_dir = a.out_dir.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(a.out_dir);
+  return run_case(std::move(spec), ro);
+}
+
+int bench_command(const CliArgs& a) {
+  const std::string path = a.case_path.empty()
+                               ? std::string(VRSPH_SOURCE_DIR) + "/cases/bench_dam_break_2d.toml"
+                               : a.case_path;
+  BenchOptions bo{a.bench_time, a.threads, a.cells, {}};
+  if (!a.json_out.empty()) bo.json_out = a.json_out;
+  return bench_case(load_case(path, a.sets), bo);
+}
+
 int dispatch(int argc, char** argv) {
   CLI::App app{"vrsph: weakly compressible SPH with surface tension and variable resolution"};
   app.set_version_flag("--version", std::string(VRSPH_VERSION));
   app.require_subcommand(1);
-
-  std::string case_path, out_dir, resume_dir, json_out;
-  std::vector<std::string> sets;
-  int threads = 0, cells = 2;
-  bool quiet = false, force = false;
-  double bench_time = 0.05;
-
-  CLI::App* run = app.add_subcommand("run", "run a case (or resume a stopped run)");
-  run->add_option("case", case_path, "case file (TOML)");
-  run->add_option("--out", out_dir, "output folder (default out/<case name>)");
-  run->add_option("--resume", resume_dir, "continue the run in this folder from its checkpoint");
-  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::Range(1, 4096).description("an integer >= 1"));
-  run->add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  run->add_flag("--quiet", quiet, "no progress line and no start/end summaries");
-  run->add_flag("--force", force, "overwrite an earlier run in the output folder");
-  run->add_option("--cells-per-support", cells, "neighbour cells per 2h (1 full, 2 half)")
-      ->check(CLI::Range(1, 4));
-  int halt_after = -1;
-  run->add_option("--halt-after-output", halt_after,
-                  "testing aid: stop abruptly right after writing snapshot K (as a kill would)")
-      ->group("");  // hidden from --help
-
-  CLI::App* check = app.add_subcommand("check", "validate a case and report particle counts and dt");
-  check->add_option("case", case_path, "case file (TOML)")->required();
-  check->add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-
-  CLI::App* bench = app.add_subcommand("bench", "time a case without outputs (default: the benchmark case)");
-  bench->add_option("case", case_path, "case file (default cases/bench_dam_break_2d.toml)");
-  bench->add_option("--time", bench_time, "simulated time in s")->check(CLI::PositiveNumber);
-  bench->add_option("--threads", threads, "OpenMP threads")
-      ->check(CLI::Range(1, 4096).description("an integer >= 1"));
-  bench->add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  bench->add_option("--json", json_out, "also write the figures to this JSON file");
-  bench->add_option("--cells-per-support", cells, "neighbour cells per 2h (1 full, 2 half)")
-      ->check(CLI::Range(1, 4));
-
+  CliArgs args;
+  add_run_command(app, args);
+  CLI::App* check = add_check_command(app, args);
+  CLI::App* bench = add_bench_command(app, args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -84,32 +129,9 @@ int dispatch(int argc, char** argv) {
     fmt::print(stderr, "vrsph: {}\n", e.what());
     return kExitBadInput;
   }
-
-  if (*check) return check_case(load_case(case_path, sets));
-  if (*bench) {
-    if (case_path.empty()) case_path = std::string(VRSPH_SOURCE_DIR) + "/cases/bench_dam_break_2d.toml";
-    BenchOptions bo{bench_time, threads, cells, {}};
-    if (!json_out.empty()) bo.json_out = json_out;
-    return bench_case(load_case(case_path, sets), bo);
-  }
-  RunOptions ro;
-  ro.threads = threads;
-  ro.quiet = quiet;
-  ro.force = force;
-  ro.cells_per_support = cells;
-  ro.halt_after_output = halt_after;
-  if (!resume_dir.empty()) {
-    if (!case_path.empty()) throw CaseError("run: give either a case file or --resume DIR, not both");
-    if (!out_dir.empty()) throw CaseError("run: --out cannot be combined with --resume (the run continues in DIR)");
-    check_resume_overrides(sets);
-    ro.resume = true;
-    ro.out_dir = resume_dir;
-    return run_case(load_case((std::filesystem::path(resume_dir) / "case.toml").string(), sets), ro);
-  }
-  if (case_path.empty()) throw CaseError("run: a case file (or --resume DIR) is required");
-  CaseSpec spec = load_case(case_path, sets);
-  ro.out_dir = out_dir.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(out_dir);
-  return run_case(std::move(spec), ro);
+  if (*check) return check_case(load_case(args.case_path, args.sets));
+  if (*bench) return bench_command(args);
+  return run_command(args);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "vrsph/vres/interpolation.hpp"
 
+#include "vrsph/exec/parallel.hpp"
 
 namespace vrsph {
 namespace {
@@ -117,11 +118,9 @@ void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet
                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
                             std::vector<InterpolatedState<D>>& out, double cond_limit) {
   out.resize(points.size());
-  const auto n = static_cast<std::int64_t>(points.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
+  exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t i) {
     out[i] = interpolate_at(points[i], donors, grid, kernel, cond_limit);
-  }
+  });
 }
 
 template InterpolatedState<2> interpolate_from_level(const Vec<2>&, const ParticleSet<2>&,
