@@ -95,8 +95,7 @@ inline double curvature_at_surface(double kappa, double dp) {
 //        (0 for a symmetric stencil).
 // The corrected curvature is (D - 1) u from the root u = 2 kappa / (a + sqrt(a^2 + 4 b kappa)),
 // kept uncorrected where a < (D - 1)/4 (too few neighbours with normals) or the root is complex.
-// On a static circle of rings (dp = 5e-5, R = 2 mm) the outer ring's kappa r goes from 1.0068 to
-// 1.0000 and the second ring's from 0.779 to 1.000.
+// docs/validation.md ("Figures formerly in code comments") records its effect on a static circle.
 struct CurvatureSums {
   double kappa = 0.0, a = 0.0, b = 0.0;
 };

@@ -19,14 +19,13 @@
 // - Surface tension (numerics.surface_tension.zero_net_force). On a closed free surface the
 //   continuum capillary force integrates to zero (the surface integral of kappa n over a closed
 //   surface vanishes). The discrete CSF force does not: each level measures the curvature with
-//   its own truncation error (the two halves of the VR droplet pull with 0.139 and 0.143 N/m
-//   against 2 sigma = 0.146 N/m), and the difference moves the drop. The correction removes the
+//   its own truncation error, and the difference moves the drop. The correction removes the
 //   net F_st = sum_fluid m_i a_st,i as a uniform acceleration -F_st / M. Valid only for fluid whose
 //   free surface is closed (droplets): with walls the net capillary force is real (the parser
 //   refuses the combination).
 //
-// Measured on the VR droplet (docs/validation.md): without the corrections the drop drifts from
-// about 70 ms on and leaves the domain at 0.165 s; with both, its momentum stays at round-off.
+// docs/validation.md ("Figures formerly in code comments") records what the corrections do on
+// the VR droplet.
 #pragma once
 
 #include <vector>
