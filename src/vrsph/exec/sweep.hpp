@@ -8,8 +8,10 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include "vrsph/core/kernel.hpp"
 
@@ -21,38 +23,68 @@ struct PairGeometry {
   double r2, r;       // |r_ij|^2, |r_ij|
   double w;           // W(|r_ij|), 0 outside the support
   double f;           // F(|r_ij|) = W'(r)/r, 0 outside the support: grad_i W_ij = f r_ij
-  bool in;            // 0 < |r_ij| < 2h
+  double in;          // 1 when 0 < |r_ij| < 2h, else 0 (a double, not a bool: a byte-sized
+                      // member would set the vector width of the whole loop)
 };
 
-// The running sums a body adds to: up to 12 sums and one maximum (reductions need named
-// scalars; a body names the slots it uses, the others cost nothing).
+// The terms of one pair that a body returns: up to 12 sums and one maximum, zero (and -1e300)
+// when the body starts. The sweep adds them to its reductions; a body names the slots it uses,
+// the others cost nothing.
 struct PairSums {
-  double &s0, &s1, &s2, &s3, &s4, &s5, &s6, &s7, &s8, &s9, &s10, &s11;
-  double& max;
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0, s9 = 0,
+         s10 = 0, s11 = 0;
+  double max = -1e300;
 };
 
-// Sweeps x_i against the first `len` entries of the position columns xj[0..D-1] and calls
-// body(geometry, j, sums). sum[k] += slot k, vmax = max(vmax, the max slot).
-template <int D, class Body>
-inline void sweep_pairs(const WendlandC2<D>& kernel, const double xi[3], const double* const xj[3],
-                        std::ptrdiff_t len, Body&& body, double (&sum)[12], double& vmax) {
+// Candidate j's columns, read by the sweep and handed to the body as values.
+template <int K>
+struct Neighbour {
+  double c[K];
+  double operator[](int k) const { return c[k]; }
+};
+
+// Sweeps x_i against the `len` candidates of a block whose columns 0..D-1 are positions, and
+// calls body(geometry, neighbour) -> PairSums for each. sum[k] += slot k, vmax = max(vmax, max).
+// What makes the loop vectorise with GCC (each was measured; docs/validation.md): the body reads
+// only values (the neighbour's columns, and what its closure captured by value), never a
+// pointer, reference or a captured reference, and returns its terms by value. A body that
+// reads a column through a pointer, or adds into references to the sums, compiles to the
+// scalar loop.
+template <int D, int K, class Body>
+[[gnu::always_inline]] inline void sweep_pairs(const WendlandC2<D>& kernel_in,
+                                               const double xi_in[3],
+                                               const std::array<std::vector<double>, K>& cols,
+                                               std::ptrdiff_t len, Body body, double (&sum)[12],
+                                               double& vmax) {
+  const WendlandC2<D> kernel = kernel_in;  // local copies: nothing in the loop can alias them
+  const double xi[3] = {xi_in[0], xi_in[1], D == 3 ? xi_in[D - 1] : 0.0};
+  const double* col[K];
+  for (int k = 0; k < K; ++k) col[k] = cols[k].data();
   const double support2 = kernel.support2;
-  const double *x0 = xj[0], *x1 = xj[1], *x2 = xj[D - 1];
   double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0, s9 = 0, s10 = 0,
          s11 = 0, mx = -1e300;
 #pragma omp simd reduction(+ : s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11) reduction(max : mx)
   for (std::ptrdiff_t j = 0; j < len; ++j) {
+    Neighbour<K> nb;
+    for (int k = 0; k < K; ++k) nb.c[k] = col[k][j];
     PairGeometry g;
-    g.rx = xi[0] - x0[j];
-    g.ry = xi[1] - x1[j];
-    g.rz = D == 3 ? xi[2] - x2[j] : 0.0;
+    g.rx = xi[0] - nb.c[0];
+    g.ry = xi[1] - nb.c[1];
+    g.rz = D == 3 ? xi[2] - nb.c[D - 1] : 0.0;
     g.r2 = g.rx * g.rx + g.ry * g.ry + g.rz * g.rz;
-    g.in = (g.r2 < support2) & (g.r2 > 0.0);  // `&`: both tests without a branch
+    const bool in = (g.r2 < support2) & (g.r2 > 0.0);  // `&`: both tests without a branch
+    g.in = in ? 1.0 : 0.0;
     g.r = std::sqrt(g.r2);
-    g.f = g.in ? kernel.f(g.r) : 0.0;
-    g.w = g.in ? kernel.w(g.r) : 0.0;
-    PairSums s{s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11, mx};
-    body(g, j, s);
+    // Both kernel values are evaluated for every candidate (finite even for the far dummies) and
+    // then selected: an operation inside the condition would be a branch the default
+    // trapping-math rules do not let the compiler turn into a select.
+    const double f = kernel.f(g.r), w = kernel.w(g.r);
+    g.f = in ? f : 0.0;
+    g.w = in ? w : 0.0;
+    const PairSums t = body(g, nb);
+    s0 += t.s0, s1 += t.s1, s2 += t.s2, s3 += t.s3, s4 += t.s4, s5 += t.s5;
+    s6 += t.s6, s7 += t.s7, s8 += t.s8, s9 += t.s9, s10 += t.s10, s11 += t.s11;
+    mx = std::max(mx, t.max);
   }
   const double all[12] = {s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11};
   for (int k = 0; k < 12; ++k) sum[k] += all[k];

@@ -67,58 +67,51 @@ struct ForceSums {
 };
 
 // The fluid particle i against one block: pressure, viscosity, continuity and (kWall: not with
-// wall neighbours) density diffusion.
+// wall neighbours) density diffusion. Everything the body reads is a value (exec/sweep.hpp).
 template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall>
 inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceBlock<D>& blk,
                         ForceSums& out) {
   using C = ForceCol<D>;
-  const double *vx = blk.col[C::v].data(), *vy = blk.col[C::v + 1].data(),
-               *vz = blk.col[C::v + D - 1].data();
-  const double *rho = blk.col[C::rho].data(), *p = blk.col[C::p].data(),
-               *vol = blk.col[C::vol].data(), *mass = blk.col[C::mass].data();
-  const double* xj[3] = {blk.col[0].data(), blk.col[1].data(), blk.col[D - 1].data()};
   const double rho_i = me.rho, p_i = me.p, inv_rho_i = 1.0 / rho_i, eta2 = prm.eta2;
-  const double* vi = me.v;
-  auto pair = [&](const PairGeometry& g, std::ptrdiff_t j, PairSums& s) {
-    double &ax = s.s0, &ay = s.s1, &az = s.s2, &drho = s.s3, &npair = s.s4;
-    const double ux = vi[0] - vx[j], uy = vi[1] - vy[j], uz = D == 3 ? vi[2] - vz[j] : 0.0;
+  const double vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
+  const double nu = prm.nu, alpha_c0_h = prm.alpha_c0_h, two_delta_h_c0 = prm.two_delta_h_c0;
+  const double up0 = prm.up[0], up1 = prm.up[1], up2 = prm.up[D - 1];
+  const double rho0 = prm.eos.rho0, rho0_g_over_b = prm.rho0_g_over_b, inv_gamma = prm.inv_gamma;
+  auto pair = [=](const PairGeometry& g, const Neighbour<C::count>& nb) {
+    const double rho_j = nb[C::rho], vol_j = nb[C::vol], m_j = nb[C::mass];
+    const double ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
+    const double uz = D == 3 ? vi2 - nb[C::v + D - 1] : 0.0;
     const double rij_dot_gradw = g.f * g.r2;
     const double vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
     const double inv_r2eta = 1.0 / (g.r2 + eta2);
-    double c = pressure_pair(p_i, p[j], vol[j], inv_rho_i);
+    double c = pressure_pair(p_i, nb[C::p], vol_j, inv_rho_i);
     if constexpr (VM == ViscosityModel::artificial) {
-      c += artificial_viscosity_pair(mass[j], prm.alpha_c0_h, vij_dot_rij, rho_i, rho[j], g.r2,
-                                     eta2);
+      c += artificial_viscosity_pair(m_j, alpha_c0_h, vij_dot_rij, rho_i, rho_j, g.r2, eta2);
     }
     c *= g.f;
-    ax += c * g.rx;
-    ay += c * g.ry;
-    az += c * g.rz;
+    double ax = c * g.rx, ay = c * g.ry, az = c * g.rz;
     if constexpr (VM == ViscosityModel::laminar) {
-      const double lv =
-          laminar_viscosity_pair(mass[j], prm.nu, rij_dot_gradw, inv_r2eta, rho_i, rho[j]);
+      const double lv = laminar_viscosity_pair(m_j, nu, rij_dot_gradw, inv_r2eta, rho_i, rho_j);
       ax += lv * ux;
       ay += lv * uy;
       az += lv * uz;
     }
-    double dr = continuity_pair(rho_i, vol[j], g.f, vij_dot_rij);
+    double dr = continuity_pair(rho_i, vol_j, g.f, vij_dot_rij);
     if constexpr (!kWall && DM == DiffusionModel::molteni) {
-      dr += molteni_diffusion_pair(prm.two_delta_h_c0, vol[j], rho_i, rho[j], rij_dot_gradw,
-                                   inv_r2eta);
+      dr += molteni_diffusion_pair(two_delta_h_c0, vol_j, rho_i, rho_j, rij_dot_gradw, inv_r2eta);
     } else if constexpr (!kWall && DM == DiffusionModel::fourtakas) {
-      const double z_ij =
-          g.rx * prm.up[0] + g.ry * prm.up[1] + (D == 3 ? g.rz * prm.up[D - 1] : 0.0);
-      const double rho_h =
-          hydrostatic_density_difference(prm.eos.rho0, prm.rho0_g_over_b, prm.inv_gamma, z_ij);
-      dr += fourtakas_diffusion_pair(prm.two_delta_h_c0, vol[j], rho_i, rho[j], rho_h,
-                                     rij_dot_gradw, inv_r2eta);
+      const double z_ij = g.rx * up0 + g.ry * up1 + (D == 3 ? g.rz * up2 : 0.0);
+      const double rho_h = hydrostatic_density_difference(rho0, rho0_g_over_b, inv_gamma, z_ij);
+      dr += fourtakas_diffusion_pair(two_delta_h_c0, vol_j, rho_i, rho_j, rho_h, rij_dot_gradw,
+                                     inv_r2eta);
     }
-    drho += dr;
-    s.max = std::max(s.max, g.in ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300);
-    npair += g.in ? 1.0 : 0.0;
+    PairSums s;  // acceleration, drho/dt, pair count, viscous dt measure
+    s.s0 = ax, s.s1 = ay, s.s2 = az, s.s3 = dr, s.s4 = g.in;
+    s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
+    return s;
   };
-  sweep_pairs<D>(prm.kernel, me.x, xj, static_cast<std::ptrdiff_t>(blk.len), pair, out.s,
-                 out.max_visc_dt);
+  sweep_pairs<D, C::count>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair,
+                           out.s, out.max_visc_dt);
 }
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
@@ -126,22 +119,21 @@ template <int D>
 inline void wall_sweep(const SolverParams<D>& prm, const Self& me, const ForceBlock<D>& blk,
                        ForceSums& out) {
   using C = ForceCol<D>;
-  const double *vx = blk.col[C::v].data(), *vy = blk.col[C::v + 1].data(),
-               *vz = blk.col[C::v + D - 1].data();
-  const double* vol = blk.col[C::wall_vol].data();
-  const double* xj[3] = {blk.col[0].data(), blk.col[1].data(), blk.col[D - 1].data()};
   const double rho_i = me.rho, eta2 = prm.eta2;
-  const double* vi = me.v;
-  auto pair = [&](const PairGeometry& g, std::ptrdiff_t j, PairSums& s) {
-    const double ux = vi[0] - vx[j], uy = vi[1] - vy[j], uz = D == 3 ? vi[2] - vz[j] : 0.0;
+  const double vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
+  auto pair = [=](const PairGeometry& g, const Neighbour<C::count>& nb) {
+    const double ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
+    const double uz = D == 3 ? vi2 - nb[C::v + D - 1] : 0.0;
     const double vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
     const double inv_r2eta = 1.0 / (g.r2 + eta2);
-    s.s3 += continuity_pair(rho_i, vol[j], g.f, vij_dot_rij);
-    s.max = std::max(s.max, g.in ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300);
-    s.s4 += g.in ? 1.0 : 0.0;
+    PairSums s;
+    s.s3 = continuity_pair(rho_i, nb[C::wall_vol], g.f, vij_dot_rij);
+    s.s4 = g.in;
+    s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
+    return s;
   };
-  sweep_pairs<D>(prm.kernel, me.x, xj, static_cast<std::ptrdiff_t>(blk.len), pair, out.s,
-                 out.max_visc_dt);
+  sweep_pairs<D, C::count>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair,
+                           out.s, out.max_visc_dt);
 }
 
 // Per-thread scratch of the force pass and its statistics (ForceStats::merge across threads).

@@ -41,35 +41,32 @@ void position_of(const LevelColumns<D>& c, std::size_t i, double xi[3]) {
   for (int d = 0; d < D; ++d) xi[d] = c.x[d][i];
 }
 
-template <int K, int D>
-void positions_of(const CandidateBlock<K>& b, const double* xj[3]) {
-  xj[0] = b.col[0].data(), xj[1] = b.col[1].data(), xj[2] = b.col[D - 1].data();
-}
 
 // Pass 1 of particle i over its block (columns x, V): M in s0..s5 (xx, xy, yy, xz, yz, zz),
 // grad C in s6..s8, div r in s9, the Shepard sum in s10.
 template <int D>
 void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk, const double xi[3],
                     double (&sum)[12]) {
-  const double* vol = blk.col[D].data();
-  const double* xj[3];
-  positions_of<D + 1, D>(blk, xj);
-  auto pair = [&](const PairGeometry& g, std::ptrdiff_t j, PairSums& s) {
-    const double vf = vol[j] * g.f;
-    s.s0 += correction_matrix_pair(vf, g.rx, g.rx);
-    s.s1 += correction_matrix_pair(vf, g.rx, g.ry);
-    s.s2 += correction_matrix_pair(vf, g.ry, g.ry);
-    s.s3 += correction_matrix_pair(vf, g.rx, g.rz);
-    s.s4 += correction_matrix_pair(vf, g.ry, g.rz);
-    s.s5 += correction_matrix_pair(vf, g.rz, g.rz);
-    s.s6 += colour_gradient_pair(vf, g.rx);
-    s.s7 += colour_gradient_pair(vf, g.ry);
-    s.s8 += colour_gradient_pair(vf, g.rz);
-    s.s9 += position_divergence_pair(vf, g.r2);
-    s.s10 += shepard_pair(vol[j], g.w);
+  auto pair = [](const PairGeometry& g, const Neighbour<D + 1>& nb) {
+    PairSums s;
+    const double vol_j = nb[D];
+    const double vf = vol_j * g.f;
+    s.s0 = correction_matrix_pair(vf, g.rx, g.rx);
+    s.s1 = correction_matrix_pair(vf, g.rx, g.ry);
+    s.s2 = correction_matrix_pair(vf, g.ry, g.ry);
+    s.s3 = correction_matrix_pair(vf, g.rx, g.rz);
+    s.s4 = correction_matrix_pair(vf, g.ry, g.rz);
+    s.s5 = correction_matrix_pair(vf, g.rz, g.rz);
+    s.s6 = colour_gradient_pair(vf, g.rx);
+    s.s7 = colour_gradient_pair(vf, g.ry);
+    s.s8 = colour_gradient_pair(vf, g.rz);
+    s.s9 = position_divergence_pair(vf, g.r2);
+    s.s10 = shepard_pair(vol_j, g.w);
+    return s;
   };
   double unused = -1e300;
-  sweep_pairs<D>(prm.kernel, xi, xj, static_cast<std::ptrdiff_t>(blk.len), pair, sum, unused);
+  sweep_pairs<D, D + 1>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum,
+                        unused);
 }
 
 // M_i and grad C_i from the pass-1 slots.
@@ -135,15 +132,15 @@ void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const
     double xi[3] = {0, 0, 0};
     position_of(cols, i, xi);
     blk.gather(src, pad, grid, grid.particle_cells()[i], Groups::fluid);
-    const double *vol = blk.col[D].data(), *lam = blk.col[D + 1].data();
-    const double* xj[3];
-    positions_of<D + 2, D>(blk, xj);
     double s[12] = {}, unused = -1e300;
-    auto pair = [&](const PairGeometry& g, std::ptrdiff_t j, PairSums& a) {
-      const double c = lambda_gradient_pair(lam[j], lambda_ref, vol[j], g.f);
-      a.s0 += c * g.rx, a.s1 += c * g.ry, a.s2 += c * g.rz;
+    auto pair = [=](const PairGeometry& g, const Neighbour<D + 2>& nb) {
+      PairSums a;
+      const double c = lambda_gradient_pair(nb[D + 1], lambda_ref, nb[D], g.f);
+      a.s0 = c * g.rx, a.s1 = c * g.ry, a.s2 = c * g.rz;
+      return a;
     };
-    sweep_pairs<D>(prm.kernel, xi, xj, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused);
+    sweep_pairs<D, D + 2>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s,
+                          unused);
     Vec<D> sum;
     for (int d = 0; d < D; ++d) sum[d] = s[d];
     sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i,
@@ -159,21 +156,21 @@ namespace {
 template <int D>
 CurvatureSums curvature_particle(const SolverParams<D>& prm, const CandidateBlock<2 * D + 1>& blk,
                                  const double xi[3], const Vec<D>& n_i, const Mat<D>& l_i) {
-  const double* vol = blk.col[D].data();
-  const double* nj[3] = {blk.col[D + 1].data(), blk.col[D + 2].data(), blk.col[2 * D].data()};
-  const double* xj[3];
-  positions_of<2 * D + 1, D>(blk, xj);
-  auto pair = [&](const PairGeometry& g, std::ptrdiff_t j, PairSums& s) {
+  auto pair = [=](const PairGeometry& g, const Neighbour<2 * D + 1>& nb) {
+    PairSums s;
     Vec<D> n_j, r_ij;
-    n_j[0] = nj[0][j], n_j[1] = nj[1][j], r_ij[0] = g.rx, r_ij[1] = g.ry;
-    if constexpr (D == 3) n_j[2] = nj[2][j], r_ij[2] = g.rz;
+    n_j[0] = nb[D + 1], n_j[1] = nb[D + 2], r_ij[0] = g.rx, r_ij[1] = g.ry;
+    if constexpr (D == 3) n_j[2] = nb[2 * D], r_ij[2] = g.rz;
+    const double vol_j = nb[D];
     const bool s_ij = curvature_filter<D>(norm2(n_j), dot(n_i, n_j));
     CurvatureSums c;
-    add_curvature_pair<D>(c, s_ij ? vol[j] : 0.0, n_i, n_j, -1.0 * r_ij, l_i * (g.f * r_ij));
-    s.s0 += c.kappa, s.s1 += c.a, s.s2 += c.b;
+    add_curvature_pair<D>(c, s_ij ? vol_j : 0.0, n_i, n_j, -1.0 * r_ij, l_i * (g.f * r_ij));
+    s.s0 = c.kappa, s.s1 = c.a, s.s2 = c.b;
+    return s;
   };
   double s[12] = {}, unused = -1e300;
-  sweep_pairs<D>(prm.kernel, xi, xj, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused);
+  sweep_pairs<D, 2 * D + 1>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s,
+                            unused);
   return CurvatureSums{s[0], s[1], s[2]};
 }
 
