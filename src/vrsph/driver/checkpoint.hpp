@@ -29,17 +29,22 @@ class Checkpoint {
   const std::vector<std::uint8_t>& u8(const std::string& name) const;
   double scalar(const std::string& name) const;
   bool has(const std::string& name) const;
+  std::vector<std::string> names() const;  // every record, sorted
 
   void save(const std::filesystem::path& path) const;
   static Checkpoint load(const std::filesystem::path& path);
 
-  // The persistent particle arrays of one level under the prefix "levelN.".
+  // The persistent arrays of ParticleSet's field list for one level, as "levelN.<field>"
+  // (vectors flattened, D values per particle).
   template <int D>
   void put_particles(int level, const ParticleSet<D>& ps);
   template <int D>
   void get_particles(int level, ParticleSet<D>& ps) const;
 
  private:
+  template <class T>
+  const std::vector<T>& get(const std::string& name) const;
+
   std::map<std::string, std::vector<double>> f64_;
   std::map<std::string, std::vector<std::int64_t>> i64_;
   std::map<std::string, std::vector<std::uint64_t>> u64_;
