@@ -15,7 +15,6 @@ namespace vrsph {
 namespace {
 
 constexpr char kMagic[8] = {'V', 'R', 'S', 'P', 'H', 'C', 'K', '\0'};
-constexpr std::uint32_t kVersion = 1;
 enum class RecordType : std::uint8_t { f64 = 1, i64 = 2, u64 = 3, u8 = 4 };
 
 template <class T>
@@ -96,11 +95,22 @@ const std::vector<T>& Checkpoint::get(const std::string& n) const {
   else return u8(n);
 }
 
+template <class T>
+T Checkpoint::value(const std::string& n) const {
+  const auto& v = get<T>(n);
+  if (v.size() != 1) throw std::runtime_error("checkpoint: record '" + n + "' is not a single value");
+  return v[0];
+}
+
+template double Checkpoint::value<double>(const std::string&) const;
+template std::int64_t Checkpoint::value<std::int64_t>(const std::string&) const;
+template std::uint64_t Checkpoint::value<std::uint64_t>(const std::string&) const;
+
 void Checkpoint::save(const std::filesystem::path& path) const {
   AtomicWriter w(path);
   std::ostream& os = w.stream();
   os.write(kMagic, sizeof(kMagic));
-  write_pod(os, kVersion);
+  write_pod(os, kCheckpointVersion);
   write_records(os, f64_, RecordType::f64);
   write_records(os, i64_, RecordType::i64);
   write_records(os, u64_, RecordType::u64);
@@ -117,9 +127,11 @@ Checkpoint Checkpoint::load(const std::filesystem::path& path) {
     throw std::runtime_error(path.string() + ": not a vrsph checkpoint");
   }
   const auto version = read_pod<std::uint32_t>(is);
-  if (version != kVersion) {
-    throw std::runtime_error(path.string() + ": checkpoint version " + std::to_string(version) +
-                             " is not supported (this build reads version 1)");
+  if (version != kCheckpointVersion) {
+    throw std::runtime_error(fmt::format(
+        "{}: checkpoint format version {} is not supported (this build reads version {}): "
+        "rerun the case from the start",
+        path.string(), version, kCheckpointVersion));
   }
   Checkpoint c;
   while (is.peek() != std::char_traits<char>::eof()) {

@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 
 #include "vrsph/analysis/laplace.hpp"
-#include "vrsph/driver/checkpoint.hpp"
 #include "vrsph/driver/level_samples.hpp"
+#include "vrsph/driver/run_checkpoint.hpp"
 #include "vrsph/output/line_profile.hpp"
 #include "vrsph/output/summary.hpp"
 #include "vrsph/setup/geometry.hpp"
@@ -135,8 +135,8 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
       row.extra.push_back(r.mass_fluid);
     }
   }
-  const RunCounters& c = sim.counters();
   if (nl > 1) {
+    const RunCounters& c = sim.counters();
     row.extra.push_back(static_cast<double>(c.created));
     row.extra.push_back(static_cast<double>(c.deleted));
     row.extra.push_back(c.created_mass);
@@ -150,30 +150,7 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   }
   series_.append(row);
   // Checkpoint: everything needed to continue bit for bit from this output time.
-  Checkpoint ck;
-  ck.put_scalar("time", sim.time());
-  ck.put_scalar("dt_next", sim.dt_next());
-  ck.put_scalar("dt_last", sim.dt_last());
-  ck.put("step", std::vector<std::int64_t>{sim.step_count()});
-  ck.put("output_index", std::vector<std::int64_t>{index});
-  ck.put("counters", std::vector<std::uint64_t>{c.particle_steps, c.pairs, c.lost_fluid,
-                                                c.dt_limit_counts[0], c.dt_limit_counts[1],
-                                                c.dt_limit_counts[2], c.dt_limit_counts[3],
-                                                sim.initial_fluid()});
-  ck.put_scalar("wall_seconds", c.wall_seconds);
-  ck.put("levels", std::vector<std::int64_t>{static_cast<std::int64_t>(nl)});
-  for (std::size_t l = 0; l < nl; ++l) {
-    ck.put_particles<D>(static_cast<int>(l), sim.level(l).ps);
-    if (nl > 1) {
-      std::vector<double> masses;
-      for (const auto& mp : sim.level(l).mass_points) masses.push_back(mp.mass);
-      ck.put(fmt::format("level{}.point_mass", l), masses);
-    }
-  }
-  if (nl > 1) {
-    ck.put("vres_counts", std::vector<std::uint64_t>{c.created, c.deleted, c.next_id});
-    ck.put("vres_masses", std::vector<double>{c.created_mass, c.deleted_mass});
-  }
+  const Checkpoint ck = make_checkpoint(sim, index);
   ck.save(dir_ / "checkpoint.bin");
 }
 
