@@ -1,6 +1,7 @@
-// Checkpoint records are read by name: the run state round-trips through a checkpoint file member
-// by member (each member checked by hand, so one left out of the record list fails), and a
-// checkpoint of another format version is refused with a message naming the version.
+// Checkpoint records and series.csv columns are read by name: the run state round-trips through
+// a checkpoint file member by member (each member checked by hand, so one left out of the record
+// list fails), a checkpoint of another format version is refused with a message naming the
+// version, and every fixed series column shows its own row member.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,12 +10,16 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "vrsph/driver/run_checkpoint.hpp"
+#include "vrsph/output/atomic_file.hpp"
+#include "vrsph/output/series.hpp"
 
 namespace vrsph {
 namespace {
@@ -24,6 +29,13 @@ namespace fs = std::filesystem;
 fs::path temp_path(const std::string& stem) {
   return fs::temp_directory_path() /
          (stem + "_" + std::to_string(::getpid()) + "_" + std::to_string(std::random_device{}()));
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  for (std::string f; std::getline(ss, f, ',');) out.push_back(f);
+  return out;
 }
 
 // A state with a different value in every member.
@@ -136,6 +148,40 @@ TEST(NamedRecords, OldFormatVersionIsRefused) {
   }
   fs::remove(path);
   EXPECT_GE(kCheckpointVersion, 2u);
+}
+
+// Every fixed column is named in the header and shows its own member, read back by name.
+TEST(NamedRecords, SeriesColumnsShowTheirMembersByName) {
+  const fs::path path = temp_path("vrsph_series");
+  SeriesWriter w(path, {"extra_a", "extra_b"});
+  SeriesRow row;
+  row.t = 0.5;
+  row.step = 12;
+  row.dt = 0.25;
+  row.n_fluid = 34;
+  row.n_buffer = 56;
+  row.mass_fluid = 7.5;
+  row.kinetic_energy = 8.5;
+  row.max_speed = 9.5;
+  row.extra = {10.5, 11.5};
+  w.append(row);
+  std::istringstream text(read_text_file(path));
+  fs::remove(path);
+  std::string header, line;
+  std::getline(text, header);
+  std::getline(text, line);
+  const auto names = split(header), values = split(line);
+  ASSERT_EQ(names.size(), values.size());
+  std::map<std::string, std::string> by_name;
+  for (std::size_t k = 0; k < names.size(); ++k) by_name[names[k]] = values[k];
+  EXPECT_EQ(by_name.size(), kSeriesColumns.size() + 2);
+  const std::map<std::string, std::string> expected = {
+      {"t", "0.5"},          {"step", "12"},          {"dt", "0.25"},
+      {"n_fluid", "34"},     {"n_buffer", "56"},      {"mass_fluid", "7.5"},
+      {"kinetic_energy", "8.5"}, {"max_speed", "9.5"}, {"extra_a", "10.5"},
+      {"extra_b", "11.5"}};
+  EXPECT_EQ(by_name, expected);
+  EXPECT_EQ(header, "t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed,extra_a,extra_b");
 }
 
 }  // namespace
