@@ -115,7 +115,7 @@ TEST(NamedRecords, MissingRecordIsNamed) {
   }
 }
 
-// A checkpoint of format version 1 (today's layout before records were named: the counters in
+// A checkpoint of format version 1 (the layout before records were named: the counters in
 // one positional array) is refused with one line naming both versions.
 TEST(NamedRecords, OldFormatVersionIsRefused) {
   const fs::path path = temp_path("vrsph_old_checkpoint");
