@@ -31,7 +31,7 @@ namespace {
 template <int D>
 struct Record {
   Kind kind;
-  Vec<D> pos, vel, pos0, vel0;
+  Vec<D> pos, vel, pos0, vel0, shift;
   double rho, mass, rho0;
   std::size_t input_index;
 };
@@ -89,6 +89,7 @@ Cloud<D> random_cloud(int n, double support, std::uint64_t seed) {
     cl.ps.pos0[i] = x + v * 0.1;
     cl.ps.vel0[i] = v * 2.0;
     cl.ps.rho0[i] = 1000.0 + u01(rng);
+    cl.ps.shift[i] = v * 1e-3;
   }
   return cl;
 }
@@ -97,7 +98,7 @@ template <int D>
 std::map<std::uint64_t, Record<D>> records(const ParticleSet<D>& ps) {
   std::map<std::uint64_t, Record<D>> m;
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    m[ps.id[i]] = {ps.kind[i], ps.pos[i],  ps.vel[i],  ps.pos0[i], ps.vel0[i],
+    m[ps.id[i]] = {ps.kind[i], ps.pos[i],  ps.vel[i],  ps.pos0[i], ps.vel0[i], ps.shift[i],
                    ps.rho[i],  ps.mass[i], ps.rho0[i], i};
   }
   return m;
@@ -146,6 +147,7 @@ TYPED_TEST(CellGridTest, SortPermutesConsistentlyAndDropsOutside) {
       EXPECT_EQ(ps.vel[i], r.vel);
       EXPECT_EQ(ps.pos0[i], r.pos0);
       EXPECT_EQ(ps.vel0[i], r.vel0);
+      EXPECT_EQ(ps.shift[i], r.shift);
       EXPECT_EQ(ps.rho[i], r.rho);
       EXPECT_EQ(ps.mass[i], r.mass);
       EXPECT_EQ(ps.rho0[i], r.rho0);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <cstdint>
 #include <set>
 #include <string>
 #include <utility>
@@ -285,6 +286,28 @@ TEST(Restart, FolderWithoutCheckpointFailsCleanly) {
     EXPECT_EQ(read_text(a / "summary.json"), summary_before) << what;
     EXPECT_FALSE(fs::exists(a / snapshot(2, "csv"))) << what;
   }
+}
+
+// A checkpoint of an older format (version 1: counters by position) is refused on resume with
+// one line naming its version, and the folder is left as it was.
+TEST(Restart, CheckpointOfAnOlderFormatIsRefused) {
+  TempDir dir;
+  const fs::path a = dir / "a";
+  ASSERT_EQ(dir.run(tiny_dam_break(a, 0.005, 0.005)).status, 0);
+  std::string checkpoint = read_text(a / "checkpoint.bin");
+  ASSERT_GT(checkpoint.size(), 12u);
+  const std::uint32_t old_version = 1;
+  checkpoint.replace(8, 4, reinterpret_cast<const char*>(&old_version), 4);
+  write_text(a / "checkpoint.bin", checkpoint);
+  const std::string series_before = read_text(a / "series.csv");
+  const CmdResult r = dir.run({"run", "--resume", a.string(), "--quiet", "--threads", "1", "--set",
+                               "case.end_time=0.01"});
+  EXPECT_NE(r.status, 0) << r;
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << r;
+  EXPECT_NE(lines[0].find("checkpoint format version 1 is not supported"), std::string::npos) << r;
+  EXPECT_EQ(read_text(a / "series.csv"), series_before);
+  EXPECT_FALSE(fs::exists(a / snapshot(2, "vtp")));
 }
 
 TEST(Restart, HaltedRunResumesToTheSameBytes3D) {

@@ -1,9 +1,13 @@
 #include "vrsph/driver/checkpoint.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "vrsph/output/atomic_file.hpp"
 
@@ -11,7 +15,6 @@ namespace vrsph {
 namespace {
 
 constexpr char kMagic[8] = {'V', 'R', 'S', 'P', 'H', 'C', 'K', '\0'};
-constexpr std::uint32_t kVersion = 1;
 enum class RecordType : std::uint8_t { f64 = 1, i64 = 2, u64 = 3, u8 = 4 };
 
 template <class T>
@@ -74,11 +77,40 @@ bool Checkpoint::has(const std::string& n) const {
   return f64_.count(n) || i64_.count(n) || u64_.count(n) || u8_.count(n);
 }
 
+std::vector<std::string> Checkpoint::names() const {
+  std::vector<std::string> out;
+  auto add = [&out](const auto& m) {
+    for (const auto& kv : m) out.push_back(kv.first);
+  };
+  add(f64_), add(i64_), add(u64_), add(u8_);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+template <class T>
+const std::vector<T>& Checkpoint::get(const std::string& n) const {
+  if constexpr (std::is_same_v<T, double>) return f64(n);
+  else if constexpr (std::is_same_v<T, std::int64_t>) return i64(n);
+  else if constexpr (std::is_same_v<T, std::uint64_t>) return u64(n);
+  else return u8(n);
+}
+
+template <class T>
+T Checkpoint::value(const std::string& n) const {
+  const auto& v = get<T>(n);
+  if (v.size() != 1) throw std::runtime_error("checkpoint: record '" + n + "' is not a single value");
+  return v[0];
+}
+
+template double Checkpoint::value<double>(const std::string&) const;
+template std::int64_t Checkpoint::value<std::int64_t>(const std::string&) const;
+template std::uint64_t Checkpoint::value<std::uint64_t>(const std::string&) const;
+
 void Checkpoint::save(const std::filesystem::path& path) const {
   AtomicWriter w(path);
   std::ostream& os = w.stream();
   os.write(kMagic, sizeof(kMagic));
-  write_pod(os, kVersion);
+  write_pod(os, kCheckpointVersion);
   write_records(os, f64_, RecordType::f64);
   write_records(os, i64_, RecordType::i64);
   write_records(os, u64_, RecordType::u64);
@@ -95,9 +127,11 @@ Checkpoint Checkpoint::load(const std::filesystem::path& path) {
     throw std::runtime_error(path.string() + ": not a vrsph checkpoint");
   }
   const auto version = read_pod<std::uint32_t>(is);
-  if (version != kVersion) {
-    throw std::runtime_error(path.string() + ": checkpoint version " + std::to_string(version) +
-                             " is not supported (this build reads version 1)");
+  if (version != kCheckpointVersion) {
+    throw std::runtime_error(fmt::format(
+        "{}: checkpoint format version {} is not supported (this build reads version {}): "
+        "rerun the case from the start",
+        path.string(), version, kCheckpointVersion));
   }
   Checkpoint c;
   while (is.peek() != std::char_traits<char>::eof()) {
@@ -117,61 +151,83 @@ Checkpoint Checkpoint::load(const std::filesystem::path& path) {
   return c;
 }
 
+namespace {
+
+// How one particle array is stored: its record element type and values per particle. Kinds are
+// stored as u8, vectors flattened.
+template <class T>
+struct RecordOf {
+  using type = T;
+  static constexpr std::size_t width = 1;
+};
+template <>
+struct RecordOf<Kind> {
+  using type = std::uint8_t;
+  static constexpr std::size_t width = 1;
+};
+template <int D>
+struct RecordOf<Vec<D>> {
+  using type = double;
+  static constexpr std::size_t width = D;
+};
+
+template <class T>
+std::vector<typename RecordOf<T>::type> to_record(const std::vector<T>& v) {
+  if constexpr (std::is_same_v<T, Kind>) {
+    std::vector<std::uint8_t> out(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) out[i] = static_cast<std::uint8_t>(v[i]);
+    return out;
+  } else if constexpr (RecordOf<T>::width > 1) {
+    constexpr std::size_t w = RecordOf<T>::width;
+    std::vector<double> out(v.size() * w);
+    for (std::size_t i = 0; i < v.size(); ++i)
+      for (std::size_t k = 0; k < w; ++k) out[i * w + k] = v[i][static_cast<int>(k)];
+    return out;
+  } else {
+    return v;
+  }
+}
+
+template <class T>
+void from_record(const std::vector<typename RecordOf<T>::type>& r, std::vector<T>& v) {
+  constexpr std::size_t w = RecordOf<T>::width;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if constexpr (std::is_same_v<T, Kind>) v[i] = static_cast<Kind>(r[i]);
+    else if constexpr (w > 1)
+      for (std::size_t k = 0; k < w; ++k) v[i][static_cast<int>(k)] = r[i * w + k];
+    else v[i] = r[i];
+  }
+}
+
+std::string level_prefix(int level) { return "level" + std::to_string(level) + "."; }
+
+}  // namespace
+
 template <int D>
 void Checkpoint::put_particles(int level, const ParticleSet<D>& ps) {
-  const std::string pre = "level" + std::to_string(level) + ".";
-  const std::size_t n = ps.size();
-  std::vector<double> pos(n * D), vel(n * D), shift(n * D);
-  std::vector<std::uint8_t> kind(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < D; ++k) {
-      pos[i * D + k] = ps.pos[i][k];
-      vel[i * D + k] = ps.vel[i][k];
-      shift[i * D + k] = ps.shift[i][k];
-    }
-    kind[i] = static_cast<std::uint8_t>(ps.kind[i]);
-  }
-  put(pre + "id", ps.id);
-  put(pre + "kind", std::move(kind));
-  put(pre + "pos", std::move(pos));
-  put(pre + "vel", std::move(vel));
-  put(pre + "rho", ps.rho);
-  put(pre + "mass", ps.mass);
-  put(pre + "shift", std::move(shift));
+  const std::string pre = level_prefix(level);
+  ps.for_each_field([&](std::string_view name, const auto& v, FieldRole role) {
+    if (role == FieldRole::persistent) put(pre + std::string(name), to_record(v));
+  });
 }
 
 template <int D>
 void Checkpoint::get_particles(int level, ParticleSet<D>& ps) const {
-  const std::string pre = "level" + std::to_string(level) + ".";
-  const auto& id = u64(pre + "id");
-  const std::size_t n = id.size();
-  const auto& kind = u8(pre + "kind");
-  const auto& pos = f64(pre + "pos");
-  const auto& vel = f64(pre + "vel");
-  const auto& rho = f64(pre + "rho");
-  const auto& mass = f64(pre + "mass");
-  if (kind.size() != n || pos.size() != n * D || vel.size() != n * D || rho.size() != n ||
-      mass.size() != n) {
-    throw std::runtime_error("checkpoint: particle arrays of " + pre + " have mismatched sizes");
-  }
+  const std::string pre = level_prefix(level);
+  const std::size_t n = u64(pre + "id").size();
   ps = ParticleSet<D>{};
   ps.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    ps.id[i] = id[i];
-    ps.kind[i] = static_cast<Kind>(kind[i]);
-    for (int k = 0; k < D; ++k) {
-      ps.pos[i][k] = pos[i * D + k];
-      ps.vel[i][k] = vel[i * D + k];
+  ps.for_each_field([&](std::string_view name, auto& v, FieldRole role) {
+    if (role != FieldRole::persistent) return;
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    const std::string record = pre + std::string(name);
+    const auto& r = get<typename RecordOf<T>::type>(record);
+    if (r.size() != n * RecordOf<T>::width) {
+      throw std::runtime_error(fmt::format("checkpoint: {} has {} values for {} particles",
+                                           record, r.size(), n));
     }
-    ps.rho[i] = rho[i];
-    ps.mass[i] = mass[i];
-  }
-  if (has(pre + "shift")) {  // the last shifting displacement (an output field)
-    const auto& shift = f64(pre + "shift");
-    if (shift.size() != n * D) throw std::runtime_error("checkpoint: " + pre + "shift has the wrong size");
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < D; ++k) ps.shift[i][k] = shift[i * D + k];
-  }
+    from_record(r, v);
+  });
 }
 
 template void Checkpoint::put_particles<2>(int, const ParticleSet<2>&);

@@ -1,6 +1,6 @@
-// Restart files. A checkpoint is a versioned binary file of named arrays ("records"), so later
-// state (more levels, buffer zones, accumulated masses at creation points) is added as new
-// records without breaking old files: a reader asks for the records it knows.
+// Restart files. A checkpoint is a versioned binary file of named arrays ("records"); every value
+// is read back by its name, never by its place in a file or in an array. A reader asks for the
+// records it knows, and a change of what a record means bumps kCheckpointVersion.
 // Layout: "VRSPHCK\0", u32 version, then records: u32 name length, name, u8 type, u64 count,
 // raw little-endian data. Written atomically (temp file + rename).
 #pragma once
@@ -14,6 +14,10 @@
 #include "vrsph/particles/particles.hpp"
 
 namespace vrsph {
+
+// Version 2: each counter its own named record, particle arrays named after the field list.
+// Version 1 (counters in one positional array) is refused.
+inline constexpr std::uint32_t kCheckpointVersion = 2;
 
 class Checkpoint {
  public:
@@ -29,17 +33,30 @@ class Checkpoint {
   const std::vector<std::uint8_t>& u8(const std::string& name) const;
   double scalar(const std::string& name) const;
   bool has(const std::string& name) const;
+  std::vector<std::string> names() const;  // every record, sorted
+
+  // One-value records of type double, std::int64_t or std::uint64_t.
+  template <class T>
+  void put_value(const std::string& name, T v) {
+    put(name, std::vector<T>{v});
+  }
+  template <class T>
+  T value(const std::string& name) const;
 
   void save(const std::filesystem::path& path) const;
   static Checkpoint load(const std::filesystem::path& path);
 
-  // The persistent particle arrays of one level under the prefix "levelN.".
+  // The persistent arrays of ParticleSet's field list for one level, as "levelN.<field>"
+  // (vectors flattened, D values per particle).
   template <int D>
   void put_particles(int level, const ParticleSet<D>& ps);
   template <int D>
   void get_particles(int level, ParticleSet<D>& ps) const;
 
  private:
+  template <class T>
+  const std::vector<T>& get(const std::string& name) const;
+
   std::map<std::string, std::vector<double>> f64_;
   std::map<std::string, std::vector<std::int64_t>> i64_;
   std::map<std::string, std::vector<std::uint64_t>> u64_;

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "vrsph/driver/checkpoint.hpp"
+#include "vrsph/driver/run_checkpoint.hpp"
 #include "vrsph/driver/run_outputs.hpp"
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/output/atomic_file.hpp"
@@ -56,46 +56,6 @@ void prepare_out_dir(const std::filesystem::path& dir, bool force) {
   fs::create_directories(dir);
 }
 
-template <int D>
-void restore_from_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
-  const auto levels = static_cast<std::size_t>(ck.i64("levels").at(0));
-  if (levels != sim.level_count()) {
-    throw CaseError(fmt::format(
-        "--resume: the checkpoint holds {} level(s) but the case makes {} ([[refinement]] changed)",
-        levels, sim.level_count()));
-  }
-  for (std::size_t l = 0; l < levels; ++l) {
-    auto& L = sim.level(l);
-    ck.get_particles<D>(static_cast<int>(l), L.ps);
-    if (levels > 1) {
-      const auto& m = ck.f64(fmt::format("level{}.point_mass", l));
-      if (m.size() != sim.link(l).mass_points.size())
-        throw CaseError("--resume: the checkpoint's mass points do not match the case's refinement boxes");
-      for (std::size_t q = 0; q < m.size(); ++q) sim.link(l).mass_points[q].mass = m[q];
-    }
-  }
-  const auto& cv = ck.u64("counters");
-  RunCounters c;
-  c.particle_steps = cv.at(0);
-  c.pairs = cv.at(1);
-  c.lost_fluid = cv.at(2);
-  for (std::size_t k = 0; k < 4; ++k) c.dt_limit_counts[k] = cv.at(3 + k);
-  c.wall_seconds = ck.scalar("wall_seconds");
-  if (levels > 1) {
-    const auto& vc = ck.u64("vres_counts");
-    const auto& vm = ck.f64("vres_masses");
-    c.created = vc.at(0);
-    c.deleted = vc.at(1);
-    c.next_id = vc.at(2);
-    c.created_mass = vm.at(0);
-    c.deleted_mass = vm.at(1);
-  } else {
-    c.next_id = sim.counters().next_id;
-  }
-  sim.restore(ck.scalar("time"), ck.i64("step").at(0), ck.scalar("dt_next"), c, cv.at(7));
-  sim.resort();
-}
-
 // The refinement boxes and both buffer edges of each, for ParaView.
 template <int D>
 void write_refinement_boxes(const Simulation<D>& sim, const std::filesystem::path& path) {
@@ -125,9 +85,9 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
   Simulation<D> sim(spec, opt.cells_per_support);  // fills spec.max_speed when derived
   int index = 0;
   if (opt.resume) {
-    const Checkpoint ck = Checkpoint::load(opt.out_dir / "checkpoint.bin");
-    restore_from_checkpoint(sim, ck);
-    index = static_cast<int>(ck.i64("output_index").at(0)) + 1;
+    const RunState state =
+        restore_checkpoint(sim, Checkpoint::load(opt.out_dir / "checkpoint.bin"));
+    index = static_cast<int>(state.output_index) + 1;
     if (sim.time() >= spec.end_time) {
       throw CaseError(fmt::format(
           "case.end_time = {}: the run in {} already reached t = {} s (raise it with --set "

@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 
 #include "vrsph/analysis/laplace.hpp"
-#include "vrsph/driver/checkpoint.hpp"
 #include "vrsph/driver/level_samples.hpp"
+#include "vrsph/driver/run_checkpoint.hpp"
 #include "vrsph/output/line_profile.hpp"
 #include "vrsph/output/summary.hpp"
 #include "vrsph/setup/geometry.hpp"
@@ -54,32 +54,51 @@ std::vector<ExtraField> surface_extras(Simulation<D>& sim) {
   return out;
 }
 
-// Series columns added with variable resolution: per-level counts and fluid masses, and the
-// particles created and deleted at the interfaces so far.
-std::vector<std::string> level_columns(std::size_t levels) {
-  std::vector<std::string> c;
-  if (levels < 2) return c;
-  for (std::size_t l = 0; l < levels; ++l) {
-    c.push_back(fmt::format("n_fluid_L{}", l));
-    c.push_back(fmt::format("n_buffer_L{}", l));
-    c.push_back(fmt::format("mass_fluid_L{}", l));
-  }
-  for (const char* n : {"created", "deleted", "created_mass", "deleted_mass"}) c.emplace_back(n);
-  return c;
-}
-
 // With analysis.laplace_pressure and a line: the summary's Laplace figures at every output, so
 // that a run's RMSE can be followed in time (at one instant it moves with the drop's shape
 // oscillations).
 bool has_laplace(const CaseSpec& spec) { return spec.laplace_pressure && !spec.lines.empty(); }
 
-std::vector<std::string> extra_columns(const CaseSpec& spec) {
-  std::vector<std::string> c = level_columns(spec.refinements.size() + 1);
+// Series columns added with variable resolution: per-level counts and fluid masses, and the
+// particles created and deleted at the interfaces so far.
+void add_level_columns(std::vector<SeriesExtraColumn>& c, std::size_t levels) {
+  if (levels < 2) return;
+  for (std::size_t l = 0; l < levels; ++l) {
+    c.push_back({fmt::format("n_fluid_L{}", l),
+                 [l](const SeriesInputs& in) { return double(in.levels[l].n_fluid); }});
+    c.push_back({fmt::format("n_buffer_L{}", l),
+                 [l](const SeriesInputs& in) { return double(in.levels[l].n_buffer); }});
+    c.push_back({fmt::format("mass_fluid_L{}", l),
+                 [l](const SeriesInputs& in) { return in.levels[l].mass_fluid; }});
+  }
+  c.push_back({"created", [](const SeriesInputs& in) { return double(in.counters->created); }});
+  c.push_back({"deleted", [](const SeriesInputs& in) { return double(in.counters->deleted); }});
+  c.push_back({"created_mass", [](const SeriesInputs& in) { return in.counters->created_mass; }});
+  c.push_back({"deleted_mass", [](const SeriesInputs& in) { return in.counters->deleted_mass; }});
+}
+
+// The Laplace figures, NaN when no particle lies on the line.
+double laplace_value(const SeriesInputs& in, double LaplaceError::*f) {
+  return in.laplace.n_points > 0 ? in.laplace.*f : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<SeriesExtraColumn> extra_columns(const CaseSpec& spec) {
+  std::vector<SeriesExtraColumn> c;
+  add_level_columns(c, spec.refinements.size() + 1);
   if (has_laplace(spec)) {
-    c.emplace_back("laplace_mean_interior");
-    c.emplace_back("laplace_rmse");
+    c.push_back({"laplace_mean_interior", [](const SeriesInputs& in) {
+                   return laplace_value(in, &LaplaceError::mean_interior);
+                 }});
+    c.push_back({"laplace_rmse",
+                 [](const SeriesInputs& in) { return laplace_value(in, &LaplaceError::rmse); }});
   }
   return c;
+}
+
+std::vector<std::string> column_names(const std::vector<SeriesExtraColumn>& columns) {
+  std::vector<std::string> names;
+  for (const SeriesExtraColumn& c : columns) names.push_back(c.name);
+  return names;
 }
 
 // The Laplace error on the first line (summary.json's `laplace`).
@@ -95,7 +114,8 @@ RunOutputs<D>::RunOutputs(const CaseSpec& spec, std::filesystem::path dir, bool 
     : spec_(spec),
       dir_(std::move(dir)),
       pvd_(open_pvd(dir_ / "particles.pvd", fresh, t)),
-      series_(open_series(dir_ / "series.csv", fresh, t, extra_columns(spec))) {}
+      extras_(extra_columns(spec)),
+      series_(open_series(dir_ / "series.csv", fresh, t, column_names(extras_))) {}
 
 template <int D>
 void RunOutputs<D>::write(Simulation<D>& sim, int index) {
@@ -123,57 +143,21 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
     const auto samples = sample_levels(sim, line);
     write_line_samples<D>(dir_ / line_file_name(line.name, index), samples);
   }
+  // The series row: the fixed columns summed over levels, then the extra columns in list order.
+  SeriesInputs in;
+  in.counters = &sim.counters();
   SeriesRow row;
   for (std::size_t l = 0; l < nl; ++l) {
-    const SeriesRow r = compute_series_row<D>(sim.level(l).ps, sim.time(),
-                                              static_cast<long>(sim.step_count()), sim.dt_last());
-    if (l == 0) row = r;
-    else accumulate_series_row(row, r);
-    if (nl > 1) {
-      row.extra.push_back(static_cast<double>(r.n_fluid));
-      row.extra.push_back(static_cast<double>(r.n_buffer));
-      row.extra.push_back(r.mass_fluid);
-    }
+    in.levels.push_back(compute_series_row<D>(sim.level(l).ps, sim.time(),
+                                              static_cast<long>(sim.step_count()), sim.dt_last()));
+    if (l == 0) row = in.levels[0];
+    else accumulate_series_row(row, in.levels[l]);
   }
-  const RunCounters& c = sim.counters();
-  if (nl > 1) {
-    row.extra.push_back(static_cast<double>(c.created));
-    row.extra.push_back(static_cast<double>(c.deleted));
-    row.extra.push_back(c.created_mass);
-    row.extra.push_back(c.deleted_mass);
-  }
-  if (has_laplace(spec_)) {
-    const LaplaceError e = first_line_laplace(sim, spec_);
-    const double none = std::numeric_limits<double>::quiet_NaN();  // no particle on the line
-    row.extra.push_back(e.n_points > 0 ? e.mean_interior : none);
-    row.extra.push_back(e.n_points > 0 ? e.rmse : none);
-  }
+  if (has_laplace(spec_)) in.laplace = first_line_laplace(sim, spec_);
+  for (const SeriesExtraColumn& c : extras_) row.extra.push_back(c.value(in));
   series_.append(row);
   // Checkpoint: everything needed to continue bit for bit from this output time.
-  Checkpoint ck;
-  ck.put_scalar("time", sim.time());
-  ck.put_scalar("dt_next", sim.dt_next());
-  ck.put_scalar("dt_last", sim.dt_last());
-  ck.put("step", std::vector<std::int64_t>{sim.step_count()});
-  ck.put("output_index", std::vector<std::int64_t>{index});
-  ck.put("counters", std::vector<std::uint64_t>{c.particle_steps, c.pairs, c.lost_fluid,
-                                                c.dt_limit_counts[0], c.dt_limit_counts[1],
-                                                c.dt_limit_counts[2], c.dt_limit_counts[3],
-                                                sim.initial_fluid()});
-  ck.put_scalar("wall_seconds", c.wall_seconds);
-  ck.put("levels", std::vector<std::int64_t>{static_cast<std::int64_t>(nl)});
-  for (std::size_t l = 0; l < nl; ++l) {
-    ck.put_particles<D>(static_cast<int>(l), sim.level(l).ps);
-    if (nl > 1) {
-      std::vector<double> masses;
-      for (const auto& mp : sim.link(l).mass_points) masses.push_back(mp.mass);
-      ck.put(fmt::format("level{}.point_mass", l), masses);
-    }
-  }
-  if (nl > 1) {
-    ck.put("vres_counts", std::vector<std::uint64_t>{c.created, c.deleted, c.next_id});
-    ck.put("vres_masses", std::vector<double>{c.created_mass, c.deleted_mass});
-  }
+  const Checkpoint ck = make_checkpoint(sim, index);
   ck.save(dir_ / "checkpoint.bin");
 }
 

@@ -3,14 +3,32 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
+#include "vrsph/analysis/laplace.hpp"
 #include "vrsph/output/series.hpp"
 #include "vrsph/output/snapshot.hpp"
 #include "vrsph/setup/case_spec.hpp"
 #include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
+
+// What the extra series.csv columns read at an output time.
+struct SeriesInputs {
+  std::vector<SeriesRow> levels;  // the fixed columns of each level alone
+  const RunCounters* counters = nullptr;
+  LaplaceError laplace;  // only with a Laplace check (analysis.laplace_pressure and a line)
+};
+
+// An extra series.csv column: its name in the header and its value in a row. The list of them,
+// built once from the case, gives both the header and every row.
+struct SeriesExtraColumn {
+  std::string name;
+  std::function<double(const SeriesInputs&)> value;
+};
 
 template <int D>
 class RunOutputs {
@@ -31,6 +49,7 @@ class RunOutputs {
   const CaseSpec& spec_;
   std::filesystem::path dir_;
   PvdCollection pvd_;
+  std::vector<SeriesExtraColumn> extras_;
   SeriesWriter series_;
 };
 

@@ -49,9 +49,6 @@ void accumulate_series_row(SeriesRow& row, const SeriesRow& other) {
 
 namespace {
 
-constexpr const char* kFixedHeader =
-    "t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed";
-
 std::vector<std::string> split(std::string_view line, char sep) {
   std::vector<std::string> parts;
   std::size_t start = 0;
@@ -64,24 +61,34 @@ std::vector<std::string> split(std::string_view line, char sep) {
   return parts;
 }
 
-// Extra column names from a header line; throws if the fixed part is not the expected one.
+// Extra column names from a header line; throws unless it starts with the fixed columns.
 std::vector<std::string> extras_from_header(const std::string& header,
                                             const std::filesystem::path& path) {
-  const std::string fixed = kFixedHeader;
-  if (header.compare(0, fixed.size(), fixed) != 0 ||
-      (header.size() > fixed.size() && header[fixed.size()] != ','))
-    throw std::runtime_error(path.string() + ": not a series.csv header: " + header);
-  if (header.size() == fixed.size()) return {};
-  return split(std::string_view(header).substr(fixed.size() + 1), ',');
+  const std::vector<std::string> names = split(header, ',');
+  bool fixed = names.size() >= kSeriesColumns.size();
+  for (std::size_t k = 0; fixed && k < kSeriesColumns.size(); ++k)
+    fixed = names[k] == kSeriesColumns[k].name;
+  if (!fixed) throw std::runtime_error(path.string() + ": not a series.csv header: " + header);
+  return {names.begin() + static_cast<std::ptrdiff_t>(kSeriesColumns.size()), names.end()};
 }
 
-// True if `line` has `n_columns` fields and its t (first field) parses and is <= up_to_time.
+// Index of the fixed column `name`.
+constexpr std::size_t column_index(std::string_view name) {
+  for (std::size_t k = 0; k < kSeriesColumns.size(); ++k)
+    if (kSeriesColumns[k].name == name) return k;
+  return kSeriesColumns.size();
+}
+
+// True if `line` has `n_columns` fields and its t parses and is <= up_to_time.
 bool keep_row(const std::string& line, std::size_t n_columns, double up_to_time) {
-  if (split(line, ',').size() != n_columns) return false;
+  const std::vector<std::string> fields = split(line, ',');
+  if (fields.size() != n_columns) return false;
+  constexpr std::size_t kt = column_index("t");
+  static_assert(kt < kSeriesColumns.size());
+  const std::string& f = fields[kt];
   double t = 0.0;
-  const char* end = line.data() + line.find(',');
-  const auto [ptr, ec] = std::from_chars(line.data(), end, t);
-  return ec == std::errc() && ptr == end && t <= up_to_time;
+  const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), t);
+  return ec == std::errc() && ptr == f.data() + f.size() && t <= up_to_time;
 }
 
 // Appends `text` with one write() and fsyncs; throws with the path and errno text on failure.
@@ -114,7 +121,11 @@ SeriesWriter::SeriesWriter(std::filesystem::path path, std::vector<std::string> 
 }
 
 std::string SeriesWriter::header() const {
-  std::string h = kFixedHeader;
+  std::string h;
+  for (const SeriesColumn& c : kSeriesColumns) {
+    if (!h.empty()) h += ',';
+    h += c.name;
+  }
   for (const std::string& c : extra_) h += "," + c;
   return h;
 }
@@ -132,7 +143,7 @@ SeriesWriter SeriesWriter::resume(const std::filesystem::path& path, double up_t
     throw std::runtime_error(path.string() + ": extra columns differ from the resumed run's");
   SeriesWriter w(NoInit{}, path, std::move(extras));
   std::string kept = lines[0] + "\n";
-  const std::size_t n_columns = 8 + w.extra_.size();
+  const std::size_t n_columns = kSeriesColumns.size() + w.extra_.size();
   for (std::size_t k = 1; k < lines.size(); ++k)
     if (keep_row(lines[k], n_columns, up_to_time)) kept += lines[k] + "\n";
   write_file_atomic(path, kept);
@@ -144,8 +155,12 @@ void SeriesWriter::append(const SeriesRow& row) {
     throw std::invalid_argument(fmt::format("series row has {} extra values for {} columns",
                                             row.extra.size(), extra_.size()));
   fmt::memory_buffer buf;
-  fmt::format_to(fmt::appender(buf), "{},{},{},{},{},{},{},{}", row.t, row.step, row.dt,
-                 row.n_fluid, row.n_buffer, row.mass_fluid, row.kinetic_energy, row.max_speed);
+  const char* sep = "";
+  for (const SeriesColumn& c : kSeriesColumns) {
+    if (c.real) fmt::format_to(fmt::appender(buf), "{}{}", sep, row.*c.real);
+    else fmt::format_to(fmt::appender(buf), "{}{}", sep, row.*c.count);
+    sep = ",";
+  }
   for (double v : row.extra) fmt::format_to(fmt::appender(buf), ",{}", v);
   buf.push_back('\n');
   append_durably(path_, std::string_view(buf.data(), buf.size()));

@@ -1,11 +1,14 @@
 // series.csv: one row of global diagnostics per call (at least one per output time), columns
 //   t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed[,extra columns...]
+// (the fixed ones listed once in kSeriesColumns, which the header, the rows and resume all use).
 // Each row is appended with a single write() and fsync'ed, so a killed run leaves whole lines only;
 // resume() also drops any incomplete trailing line.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vrsph/particles/particles.hpp"
@@ -22,6 +25,25 @@ struct SeriesRow {
   double kinetic_energy = 0.0;  // J, sum 0.5 m |v|^2 over fluid
   double max_speed = 0.0;       // m/s, max |v| over fluid
   std::vector<double> extra;    // one value per extra column, in the writer's order
+};
+
+// A fixed column: its name and the row member it shows (exactly one of the two is set).
+struct SeriesColumn {
+  std::string_view name;
+  double SeriesRow::*real = nullptr;
+  long SeriesRow::*count = nullptr;
+};
+
+// The fixed columns, in file order.
+inline constexpr std::array kSeriesColumns = {
+    SeriesColumn{"t", &SeriesRow::t, nullptr},
+    SeriesColumn{"step", nullptr, &SeriesRow::step},
+    SeriesColumn{"dt", &SeriesRow::dt, nullptr},
+    SeriesColumn{"n_fluid", nullptr, &SeriesRow::n_fluid},
+    SeriesColumn{"n_buffer", nullptr, &SeriesRow::n_buffer},
+    SeriesColumn{"mass_fluid", &SeriesRow::mass_fluid, nullptr},
+    SeriesColumn{"kinetic_energy", &SeriesRow::kinetic_energy, nullptr},
+    SeriesColumn{"max_speed", &SeriesRow::max_speed, nullptr},
 };
 
 // The fixed columns of a row from one particle set, summed in index order (deterministic).

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iterator>
 #include <stdexcept>
 
@@ -140,16 +141,14 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
   std::size_t j = 0;
   for (std::size_t l = 0; l < levels.size(); ++l) {
     const ParticleSet<D>& ps = *levels[l];
-    for (std::size_t i = 0; i < ps.size(); ++i, ++j) {
-      m.particles.id[j] = ps.id[i];
-      m.particles.kind[j] = ps.kind[i];
-      m.particles.pos[j] = ps.pos[i];
-      m.particles.vel[j] = ps.vel[i];
-      m.particles.rho[j] = ps.rho[i];
-      m.particles.mass[j] = ps.mass[i];
-      m.particles.p[j] = i < ps.p.size() ? ps.p[i] : 0.0;
-      m.level[j] = static_cast<std::uint8_t>(l);
-    }
+    const std::size_t np = ps.size();
+    // Every array of the field list; one a level has not filled yet (p before the first
+    // pressure update) stays zero.
+    ParticleSet<D>::zip_fields([&](std::string_view, FieldRole, auto& out, const auto& in) {
+      std::copy_n(in.begin(), std::min(np, in.size()), out.begin() + static_cast<std::ptrdiff_t>(j));
+    }, m.particles, ps);
+    std::fill_n(m.level.begin() + static_cast<std::ptrdiff_t>(j), np, static_cast<std::uint8_t>(l));
+    j += np;
   }
   return m;
 }

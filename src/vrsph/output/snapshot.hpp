@@ -46,8 +46,8 @@ void write_particles_csv(const std::filesystem::path& path, const ParticleSet<D>
 std::string snapshot_file_name(int index, std::string_view extension);
 
 // Several resolution levels gathered into one set for a snapshot (all levels go into the same
-// file): positions, velocities, rho, p, mass, id and kind are copied level after level, and
-// `level[i]` is the index of the level particle i came from.
+// file): every array of ParticleSet's field list is copied level after level, and `level[i]` is
+// the index of the level particle i came from.
 template <int D>
 struct MergedLevels {
   ParticleSet<D> particles;

@@ -137,50 +137,33 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
     if (pcell_[i] < 0) continue;
     perm_[--begin_[static_cast<std::size_t>(pcell_[i])]] = static_cast<std::uint32_t>(i);
   }
-  // One parallel region gathers every array through the permutation; the scratch arrays are
-  // members, and after the swap they hold the previous storage, so nothing is allocated once
-  // the sizes have settled.
-  for (auto* v : {&vec_scratch_[0], &vec_scratch_[1], &vec_scratch_[2], &vec_scratch_[3],
-                  &vec_scratch_[4]})
-    v->resize(kept);
-  for (auto* v : {&dbl_scratch_[0], &dbl_scratch_[1], &dbl_scratch_[2]}) v->resize(kept);
-  id_scratch_.resize(kept);
-  kind_scratch_.resize(kept);
+  // One parallel region gathers every carried array of the field list through the
+  // permutation into its twin in scratch_; after the swap scratch_ holds the previous storage,
+  // so nothing is allocated once the sizes have settled. Every thread walks the same list, so
+  // the work-shared loops line up.
+  using PS = ParticleSet<D>;
+  PS::zip_fields([kept](std::string_view, FieldRole role, auto&, auto& s) {
+    if (carried(role)) s.resize(kept);
+  }, ps, scratch_);
   cell_scratch_.resize(kept);
 #pragma omp parallel
   {
-    permute_into(ps.id, perm_, id_scratch_);
-    permute_into(ps.kind, perm_, kind_scratch_);
-    permute_into(ps.pos, perm_, vec_scratch_[0]);
-    permute_into(ps.vel, perm_, vec_scratch_[1]);
-    permute_into(ps.pos0, perm_, vec_scratch_[2]);
-    permute_into(ps.vel0, perm_, vec_scratch_[3]);
-    permute_into(ps.shift, perm_, vec_scratch_[4]);
-    permute_into(ps.rho, perm_, dbl_scratch_[0]);
-    permute_into(ps.mass, perm_, dbl_scratch_[1]);
-    permute_into(ps.rho0, perm_, dbl_scratch_[2]);
+    PS::zip_fields([this](std::string_view, FieldRole role, const auto& a, auto& s) {
+      if (carried(role)) permute_into(a, perm_, s);
+    }, ps, scratch_);
     permute_into(pcell_, perm_, cell_scratch_);
   }
-  ps.id.swap(id_scratch_);
-  ps.kind.swap(kind_scratch_);
-  ps.pos.swap(vec_scratch_[0]);
-  ps.vel.swap(vec_scratch_[1]);
-  ps.pos0.swap(vec_scratch_[2]);
-  ps.vel0.swap(vec_scratch_[3]);
-  ps.shift.swap(vec_scratch_[4]);
-  ps.rho.swap(dbl_scratch_[0]);
-  ps.mass.swap(dbl_scratch_[1]);
-  ps.rho0.swap(dbl_scratch_[2]);
+  // Derived fields (p, acc, drho) are recomputed after every sort: only resized.
+  PS::zip_fields([kept](std::string_view, FieldRole role, auto& a, auto& s) {
+    if (carried(role)) a.swap(s);
+    else a.resize(kept);
+  }, ps, scratch_);
   pcell_.swap(cell_scratch_);
   // pcell_ held sort keys; particle_cells() gives cells, without the wall group's offset.
   const auto wall_begin = static_cast<std::int64_t>(group_begin(Group::wall));
   const auto n_kept = static_cast<std::int64_t>(kept);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = wall_begin; i < n_kept; ++i) pcell_[i] -= ncell_total_;
-  // Derived fields (p, acc, drho) are recomputed after every sort: only resize them.
-  ps.p.resize(kept);
-  ps.acc.resize(kept);
-  ps.drho.resize(kept);
   return lost;
 }
 

@@ -87,10 +87,7 @@ class CellGrid {
   std::vector<std::uint32_t> begin_;  // begin_[k]..begin_[k+1]: particles of key k = c + g*ncells
   std::vector<std::int64_t> pcell_;
   std::vector<std::uint32_t> perm_;
-  std::array<std::vector<Vec<D>>, 5> vec_scratch_;
-  std::array<std::vector<double>, 3> dbl_scratch_;
-  std::vector<std::uint64_t> id_scratch_;
-  std::vector<Kind> kind_scratch_;
+  ParticleSet<D> scratch_;  // gather targets of the sort (carried arrays only), swapped in
   std::vector<std::int64_t> cell_scratch_;
 };
 

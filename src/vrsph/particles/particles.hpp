@@ -1,6 +1,7 @@
 // Particle storage: one structure of arrays per resolution level, fluid, wall and buffer particles
-// together with a kind per particle. Every array has one entry per particle and is permuted
-// together by the cell sort (CellGrid::sort), so index i means the same particle in all of them.
+// together with a kind per particle. Every array has one entry per particle, so index i means the
+// same particle in all of them. The arrays are listed once, in ParticleSet::zip_fields; resize,
+// compaction, the cell sort (CellGrid::sort), checkpoints and level merges go through that list.
 #pragma once
 
 #include <cstdint>
@@ -22,43 +23,68 @@ inline std::string_view kind_name(Kind k) {
   return "unknown";
 }
 
+// What an array holds, which decides what happens to it when particles are reordered or saved.
+enum class FieldRole : std::uint8_t {
+  persistent,  // the state: checkpointed, follows its particle through sorts and compaction
+  derived,     // recomputed by every force evaluation: only resized
+  step_copy,   // start-of-step copy of the symplectic scheme: follows its particle (the corrector
+               // reads it after the mid-step sort), not checkpointed (outputs fall between steps)
+};
+
+// True for the arrays whose values must follow their particle when the order changes.
+constexpr bool carried(FieldRole r) { return r != FieldRole::derived; }
+
 template <int D>
 struct ParticleSet {
-  // Persistent state (checkpointed).
   std::vector<std::uint64_t> id;  // permanent particle id
   std::vector<Kind> kind;
   std::vector<Vec<D>> pos;        // m
   std::vector<Vec<D>> vel;        // m/s
   std::vector<double> rho;        // kg/m^3
   std::vector<double> mass;       // kg
-  std::vector<Vec<D>> shift;      // last shifting displacement, m (output; kept through sorts)
-
-  // Derived per force evaluation (not checkpointed).
+  std::vector<Vec<D>> shift;      // last shifting displacement, m (an output field)
   std::vector<double> p;          // pressure, Pa
   std::vector<Vec<D>> acc;        // dv/dt without gravity, m/s^2
   std::vector<double> drho;       // drho/dt, kg/m^3/s
-
-  // Start-of-step copies for the symplectic scheme.
   std::vector<Vec<D>> pos0;
   std::vector<Vec<D>> vel0;
   std::vector<double> rho0;
 
+  // The list of arrays: calls f(name, role, s.array...) with the same array of every set in
+  // `sets`, array after array. A new per-particle array is one line here.
+  template <class F, class... Sets>
+  static void zip_fields(F&& f, Sets&... sets) {
+    f(std::string_view("id"), FieldRole::persistent, sets.id...);
+    f(std::string_view("kind"), FieldRole::persistent, sets.kind...);
+    f(std::string_view("pos"), FieldRole::persistent, sets.pos...);
+    f(std::string_view("vel"), FieldRole::persistent, sets.vel...);
+    f(std::string_view("rho"), FieldRole::persistent, sets.rho...);
+    f(std::string_view("mass"), FieldRole::persistent, sets.mass...);
+    f(std::string_view("shift"), FieldRole::persistent, sets.shift...);
+    f(std::string_view("p"), FieldRole::derived, sets.p...);
+    f(std::string_view("acc"), FieldRole::derived, sets.acc...);
+    f(std::string_view("drho"), FieldRole::derived, sets.drho...);
+    f(std::string_view("pos0"), FieldRole::step_copy, sets.pos0...);
+    f(std::string_view("vel0"), FieldRole::step_copy, sets.vel0...);
+    f(std::string_view("rho0"), FieldRole::step_copy, sets.rho0...);
+  }
+
+  // Calls f(name, array, role) for every array of this set (generic lambdas: the arrays differ
+  // in element type).
+  template <class F>
+  void for_each_field(F&& f) {
+    zip_fields([&f](std::string_view name, FieldRole role, auto& v) { f(name, v, role); }, *this);
+  }
+  template <class F>
+  void for_each_field(F&& f) const {
+    zip_fields([&f](std::string_view name, FieldRole role, const auto& v) { f(name, v, role); },
+               *this);
+  }
+
   std::size_t size() const { return pos.size(); }
 
   void resize(std::size_t n) {
-    id.resize(n);
-    kind.resize(n);
-    pos.resize(n);
-    vel.resize(n);
-    rho.resize(n);
-    mass.resize(n);
-    shift.resize(n);
-    p.resize(n);
-    acc.resize(n);
-    drho.resize(n);
-    pos0.resize(n);
-    vel0.resize(n);
-    rho0.resize(n);
+    for_each_field([n](std::string_view, auto& v, FieldRole) { v.resize(n); });
   }
 
   void push_back(std::uint64_t id_, Kind k, const Vec<D>& x, const Vec<D>& v, double rho_,
@@ -73,26 +99,19 @@ struct ParticleSet {
     mass[n] = m;
   }
 
-  // Keeps the particles with keep[i] != 0, in order (persistent state only; derived arrays are
+  // Keeps the particles with keep[i] != 0, in order (the carried arrays; derived arrays are
   // resized and hold stale values until the next pass). Returns the number removed.
   std::size_t compact(const std::vector<std::uint8_t>& keep) {
+    const std::size_t n = size();
     std::size_t w = 0;
-    for (std::size_t i = 0; i < size(); ++i) {
-      if (!keep[i]) continue;
-      if (w != i) {
-        id[w] = id[i];
-        kind[w] = kind[i];
-        pos[w] = pos[i];
-        vel[w] = vel[i];
-        rho[w] = rho[i];
-        mass[w] = mass[i];
-        shift[w] = shift[i];
-      }
-      ++w;
-    }
-    const std::size_t removed = size() - w;
+    for_each_field([&](std::string_view, auto& v, FieldRole role) {
+      if (!carried(role)) return;
+      w = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (keep[i]) v[w++] = v[i];
+    });
     resize(w);
-    return removed;
+    return n - w;
   }
 
   std::size_t count(Kind k) const {

@@ -1,0 +1,77 @@
+#include "vrsph/driver/run_checkpoint.hpp"
+
+#include <fmt/format.h>
+
+#include <type_traits>
+
+#include "vrsph/setup/case_parser.hpp"
+
+namespace vrsph {
+
+void put_run_state(Checkpoint& ck, const RunState& s) {
+  for_each_record(s, [&ck](const std::string& name, const auto& v) { ck.put_value(name, v); });
+}
+
+RunState get_run_state(const Checkpoint& ck) {
+  RunState s;
+  for_each_record(s, [&ck](const std::string& name, auto& v) {
+    v = ck.value<std::decay_t<decltype(v)>>(name);
+  });
+  return s;
+}
+
+template <int D>
+Checkpoint make_checkpoint(const Simulation<D>& sim, std::int64_t output_index) {
+  const std::size_t nl = sim.level_count();
+  RunState s;
+  s.time = sim.time();
+  s.dt_next = sim.dt_next();
+  s.dt_last = sim.dt_last();
+  s.step = sim.step_count();
+  s.output_index = output_index;
+  s.levels = static_cast<std::int64_t>(nl);
+  s.initial_fluid = sim.initial_fluid();
+  s.counters = sim.counters();
+  Checkpoint ck;
+  put_run_state(ck, s);
+  for (std::size_t l = 0; l < nl; ++l) {
+    ck.put_particles<D>(static_cast<int>(l), sim.level(l).ps);
+    if (nl > 1) {
+      std::vector<double> masses;
+      for (const auto& mp : sim.link(l).mass_points) masses.push_back(mp.mass);
+      ck.put(fmt::format("level{}.point_mass", l), masses);
+    }
+  }
+  return ck;
+}
+
+template <int D>
+RunState restore_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
+  const RunState s = get_run_state(ck);
+  const auto levels = static_cast<std::size_t>(s.levels);
+  if (levels != sim.level_count()) {
+    throw CaseError(fmt::format(
+        "--resume: the checkpoint holds {} level(s) but the case makes {} ([[refinement]] changed)",
+        levels, sim.level_count()));
+  }
+  for (std::size_t l = 0; l < levels; ++l) {
+    auto& L = sim.level(l);
+    ck.get_particles<D>(static_cast<int>(l), L.ps);
+    if (levels > 1) {
+      const auto& m = ck.f64(fmt::format("level{}.point_mass", l));
+      if (m.size() != sim.link(l).mass_points.size())
+        throw CaseError("--resume: the checkpoint's mass points do not match the case's refinement boxes");
+      for (std::size_t q = 0; q < m.size(); ++q) sim.link(l).mass_points[q].mass = m[q];
+    }
+  }
+  sim.restore(s.time, s.step, s.dt_next, s.counters, s.initial_fluid);
+  sim.resort();
+  return s;
+}
+
+template Checkpoint make_checkpoint<2>(const Simulation<2>&, std::int64_t);
+template Checkpoint make_checkpoint<3>(const Simulation<3>&, std::int64_t);
+template RunState restore_checkpoint<2>(Simulation<2>&, const Checkpoint&);
+template RunState restore_checkpoint<3>(Simulation<3>&, const Checkpoint&);
+
+}  // namespace vrsph
