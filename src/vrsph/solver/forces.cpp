@@ -79,6 +79,8 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceB
   const double* xj[3] = {blk.col[0].data(), blk.col[1].data(), blk.col[D - 1].data()};
   const double rho_i = me.rho, p_i = me.p, inv_rho_i = 1.0 / rho_i, eta2 = prm.eta2;
   const double* vi = me.v;
+  const ViscosityLevel& visc = prm.viscosity;
+  const DiffusionLevel& dd = prm.density_diffusion;
   auto pair = [&](const PairGeometry& g, std::ptrdiff_t j, PairSums& s) {
     double &ax = s.s0, &ay = s.s1, &az = s.s2, &drho = s.s3, &npair = s.s4;
     const double ux = vi[0] - vx[j], uy = vi[1] - vy[j], uz = D == 3 ? vi[2] - vz[j] : 0.0;
@@ -87,7 +89,7 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceB
     const double inv_r2eta = 1.0 / (g.r2 + eta2);
     double c = pressure_pair(p_i, p[j], vol[j], inv_rho_i);
     if constexpr (VM == ViscosityModel::artificial) {
-      c += artificial_viscosity_pair(mass[j], prm.alpha_c0_h, vij_dot_rij, rho_i, rho[j], g.r2,
+      c += artificial_viscosity_pair(mass[j], visc.alpha_c0_h, vij_dot_rij, rho_i, rho[j], g.r2,
                                      eta2);
     }
     c *= g.f;
@@ -96,21 +98,21 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceB
     az += c * g.rz;
     if constexpr (VM == ViscosityModel::laminar) {
       const double lv =
-          laminar_viscosity_pair(mass[j], prm.nu, rij_dot_gradw, inv_r2eta, rho_i, rho[j]);
+          laminar_viscosity_pair(mass[j], visc.nu, rij_dot_gradw, inv_r2eta, rho_i, rho[j]);
       ax += lv * ux;
       ay += lv * uy;
       az += lv * uz;
     }
     double dr = continuity_pair(rho_i, vol[j], g.f, vij_dot_rij);
     if constexpr (!kWall && DM == DiffusionModel::molteni) {
-      dr += molteni_diffusion_pair(prm.two_delta_h_c0, vol[j], rho_i, rho[j], rij_dot_gradw,
+      dr += molteni_diffusion_pair(dd.two_delta_h_c0, vol[j], rho_i, rho[j], rij_dot_gradw,
                                    inv_r2eta);
     } else if constexpr (!kWall && DM == DiffusionModel::fourtakas) {
       const double z_ij =
           g.rx * prm.up[0] + g.ry * prm.up[1] + (D == 3 ? g.rz * prm.up[D - 1] : 0.0);
       const double rho_h =
-          hydrostatic_density_difference(prm.eos.rho0, prm.rho0_g_over_b, prm.inv_gamma, z_ij);
-      dr += fourtakas_diffusion_pair(prm.two_delta_h_c0, vol[j], rho_i, rho[j], rho_h,
+          hydrostatic_density_difference(prm.eos.rho0, dd.rho0_g_over_b, dd.inv_gamma, z_ij);
+      dr += fourtakas_diffusion_pair(dd.two_delta_h_c0, vol[j], rho_i, rho[j], rho_h,
                                      rij_dot_gradw, inv_r2eta);
     }
     drho += dr;
@@ -211,7 +213,7 @@ template <int D, ViscosityModel VM>
 ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
                               const CellGrid<D>& grid, const LevelColumns<D>& cols,
                               const Vec<D>* extra, bool br) {
-  switch (prm.diffusion) {
+  switch (prm.density_diffusion.model) {
     case DiffusionModel::none:
       return force_pass<D, VM, DiffusionModel::none>(prm, ps, grid, cols, extra, br);
     case DiffusionModel::molteni:
@@ -230,7 +232,7 @@ ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const Vec<D>* extra_acc, bool buffer_reaction) {
   ps.acc.resize(ps.size());
   ps.drho.resize(ps.size());
-  if (prm.viscosity == ViscosityModel::laminar) {
+  if (prm.viscosity.model == ViscosityModel::laminar) {
     return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, cols, extra_acc,
                                                           buffer_reaction);
   }

@@ -50,24 +50,24 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
   InitialSet<D> init0 = level_fill<D>(spec, spec.dp);
   {
     setup_.fluid_height = init0.fluid_height;
-    const double g = norm(to_vec<D>(spec.gravity));
-    if (!spec.max_speed) {
+    const double g = norm(to_vec<D>(spec.fluid.gravity));
+    if (!spec.eos.max_speed) {
       if (g > 0.0 && setup_.fluid_height > 0.0) {
-        spec.max_speed = std::sqrt(g * setup_.fluid_height);
+        spec.eos.max_speed = std::sqrt(g * setup_.fluid_height);
       } else {
         double vmax = 0.0;
         for (const auto& v : init0.particles.vel) vmax = std::max(vmax, norm(v));
-        if (vmax > 0.0) spec.max_speed = vmax;
+        if (vmax > 0.0) spec.eos.max_speed = vmax;
       }
     }
   }
-  if (!spec.sound_speed && !spec.max_speed) {
+  if (!spec.eos.sound_speed && !spec.eos.max_speed) {
     throw std::invalid_argument(
         "eos.max_speed: missing: needed to set the speed of sound when there is no gravity and no "
         "initial velocity (give eos.max_speed or eos.sound_speed)");
   }
-  setup_.max_speed = spec.max_speed.value_or(0.0);
-  setup_.c0 = spec.sound_speed ? *spec.sound_speed : spec.sound_speed_factor * *spec.max_speed;
+  setup_.max_speed = spec.eos.max_speed.value_or(0.0);
+  setup_.c0 = spec.eos.sound_speed ? *spec.eos.sound_speed : spec.eos.sound_speed_factor * *spec.eos.max_speed;
 
   std::uint64_t next_id = 0;
   for (std::size_t k = 0; k < layout.size(); ++k) {
@@ -98,7 +98,7 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
   // First step: the acoustic limit of a fluid at rest, with the viscous and capillary limits.
   dt_next_ = 1e300;
   for (const Level<D>& L : levels_) {
-    DtInputs in{L.prm.h, L.prm.cfl, setup_.c0, 0.0, 0.0, 0.0, L.prm.nu, spec.density, L.prm.sigma};
+    DtInputs in{L.prm.h, L.prm.cfl, setup_.c0, 0.0, 0.0, 0.0, L.prm.viscosity.nu, spec.fluid.density, L.prm.sigma};
     for (const auto& v : L.ps.vel) in.max_speed = std::max(in.max_speed, norm(v));
     dt_next_ = std::min(dt_next_, choose_dt(in).dt);
   }
@@ -237,7 +237,7 @@ DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
       if (L.ps.kind[i] != Kind::wall) vmax2 = std::max(vmax2, norm2(L.ps.vel[i]));
     }
     const DtInputs in{L.prm.h, L.prm.cfl, setup_.c0, s.max_acc, std::sqrt(vmax2),
-                      s.max_visc_dt, L.prm.nu, L.prm.eos.rho0, L.prm.sigma};
+                      s.max_visc_dt, L.prm.viscosity.nu, L.prm.eos.rho0, L.prm.sigma};
     const DtChoice c = choose_dt(in);
     if (first || c.dt < best.dt) best = c;
     first = false;
@@ -310,7 +310,7 @@ void Simulation<D>::exchange_buffer_surface_field(std::vector<T> SurfaceFields<D
 template <int D>
 void Simulation<D>::remove_spurious_net_force(bool surface_tension) {
   const bool coupling = spec_.vres_conserve_momentum && levels_.size() > 1;
-  const bool capillary = spec_.zero_net_surface_force && surface_tension;
+  const bool capillary = spec_.numerics.surface_tension.zero_net_force && surface_tension;
   if (!coupling && !capillary) return;
   Vec<D> f{};
   if (coupling) f += coupling_net_force(levels_);
