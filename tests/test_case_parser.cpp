@@ -143,27 +143,27 @@ TEST(CaseParser, MinimalCaseGetsPhysicsDefaults) {
   EXPECT_EQ(s.name, "droplet");
   EXPECT_EQ(s.dimension, 2);
   EXPECT_DOUBLE_EQ(s.end_time, 0.2);
-  EXPECT_DOUBLE_EQ(s.density, 1000.0);
-  EXPECT_DOUBLE_EQ(s.kinematic_viscosity, 1e-6);
-  EXPECT_DOUBLE_EQ(s.surface_tension, 0.0);
-  EXPECT_EQ(s.gravity, (Vec3d{0, 0, 0}));
-  EXPECT_DOUBLE_EQ(s.gamma, 7.0);
-  EXPECT_FALSE(s.max_speed.has_value());
-  EXPECT_DOUBLE_EQ(s.sound_speed_factor, 20.0);
-  EXPECT_FALSE(s.sound_speed.has_value());
+  EXPECT_DOUBLE_EQ(s.fluid.density, 1000.0);
+  EXPECT_DOUBLE_EQ(s.fluid.kinematic_viscosity, 1e-6);
+  EXPECT_DOUBLE_EQ(s.fluid.surface_tension, 0.0);
+  EXPECT_EQ(s.fluid.gravity, (Vec3d{0, 0, 0}));
+  EXPECT_DOUBLE_EQ(s.eos.gamma, 7.0);
+  EXPECT_FALSE(s.eos.max_speed.has_value());
+  EXPECT_DOUBLE_EQ(s.eos.sound_speed_factor, 20.0);
+  EXPECT_FALSE(s.eos.sound_speed.has_value());
   EXPECT_DOUBLE_EQ(s.dp, 1e-4);
   EXPECT_DOUBLE_EQ(s.h_over_dp, 1.3);
-  EXPECT_DOUBLE_EQ(s.cfl, 0.2);
-  EXPECT_EQ(s.viscosity, ViscosityModel::laminar);
-  EXPECT_DOUBLE_EQ(s.artificial_alpha, 0.01);
-  EXPECT_EQ(s.density_diffusion, DiffusionModel::molteni);
-  EXPECT_DOUBLE_EQ(s.diffusion_delta, 0.1);
-  EXPECT_EQ(s.shifting, ShiftingModel::none);
-  EXPECT_DOUBLE_EQ(s.shifting_surface_threshold, 1.5);
-  EXPECT_DOUBLE_EQ(s.lambda_threshold, 0.7);
-  EXPECT_DOUBLE_EQ(s.normal_epsilon, 0.1);
+  EXPECT_DOUBLE_EQ(s.numerics.cfl, 0.2);
+  EXPECT_EQ(s.numerics.viscosity.model, ViscosityModel::laminar);
+  EXPECT_DOUBLE_EQ(s.numerics.viscosity.alpha, 0.01);
+  EXPECT_EQ(s.numerics.density_diffusion.model, DiffusionModel::molteni);
+  EXPECT_DOUBLE_EQ(s.numerics.density_diffusion.delta, 0.1);
+  EXPECT_EQ(s.numerics.shifting.model, ShiftingModel::none);
+  EXPECT_DOUBLE_EQ(s.numerics.shifting.surface_threshold, 1.5);
+  EXPECT_DOUBLE_EQ(s.numerics.surface_tension.lambda_threshold, 0.7);
+  EXPECT_DOUBLE_EQ(s.numerics.surface_tension.normal_epsilon, 0.1);
   EXPECT_DOUBLE_EQ(s.vres_buffer_fill_min, 0.0);  // Ricci et al.'s rule only
-  EXPECT_TRUE(s.hydrostatic_initial_density);
+  EXPECT_TRUE(s.numerics.hydrostatic_initial_density);
   ASSERT_EQ(s.fluid_blocks.size(), 1u);
   EXPECT_EQ(s.fluid_blocks[0].shape, BlockShape::circle);
   EXPECT_DOUBLE_EQ(s.fluid_blocks[0].radius, 0.002);
@@ -185,12 +185,12 @@ TEST(CaseParser, ModelAndDimensionDependentDefaults) {
       edited("dimension = 2", "dimension = 3",
              edited("\"circle\"\ncenter = [0.0, 0.0]", "\"sphere\"\ncenter = [0.0, 0.0, 0.0]"));
   const CaseSpec s3 = parse_text(sphere + "[numerics]\nshifting = { model = \"skillen\" }\n");
-  EXPECT_DOUBLE_EQ(s3.shifting_surface_threshold, 2.75);
-  EXPECT_DOUBLE_EQ(s3.shifting_coefficient, 2.0);
-  EXPECT_EQ(s3.gravity, (Vec3d{0, 0, 0}));
+  EXPECT_DOUBLE_EQ(s3.numerics.shifting.surface_threshold, 2.75);
+  EXPECT_DOUBLE_EQ(s3.numerics.shifting.coefficient, 2.0);
+  EXPECT_EQ(s3.fluid.gravity, (Vec3d{0, 0, 0}));
   const CaseSpec lind =
       parse_text(std::string(kMinimal) + "[numerics]\nshifting = { model = \"lind\" }\n");
-  EXPECT_DOUBLE_EQ(lind.shifting_coefficient, 0.05);
+  EXPECT_DOUBLE_EQ(lind.numerics.shifting.coefficient, 0.05);
 }
 
 TEST(CaseParser, IntegersAcceptedForFloats) {
@@ -208,32 +208,34 @@ TEST(CaseParser, RoundTripEveryKey) {
   EXPECT_EQ(r.name, s.name);
   EXPECT_EQ(r.dimension, s.dimension);
   EXPECT_EQ(r.end_time, s.end_time);
-  EXPECT_EQ(r.density, s.density);
-  EXPECT_EQ(r.kinematic_viscosity, s.kinematic_viscosity);
-  EXPECT_EQ(r.surface_tension, s.surface_tension);
-  EXPECT_EQ(r.gravity, s.gravity);
-  EXPECT_EQ(r.gamma, s.gamma);
-  EXPECT_EQ(r.max_speed, s.max_speed);
-  EXPECT_EQ(r.sound_speed_factor, s.sound_speed_factor);
-  EXPECT_EQ(r.sound_speed, s.sound_speed);
+  EXPECT_EQ(r.fluid.density, s.fluid.density);
+  EXPECT_EQ(r.fluid.kinematic_viscosity, s.fluid.kinematic_viscosity);
+  EXPECT_EQ(r.fluid.surface_tension, s.fluid.surface_tension);
+  EXPECT_EQ(r.fluid.gravity, s.fluid.gravity);
+  EXPECT_EQ(r.eos.gamma, s.eos.gamma);
+  EXPECT_EQ(r.eos.max_speed, s.eos.max_speed);
+  EXPECT_EQ(r.eos.sound_speed_factor, s.eos.sound_speed_factor);
+  EXPECT_EQ(r.eos.sound_speed, s.eos.sound_speed);
   EXPECT_EQ(r.dp, s.dp);
   EXPECT_EQ(r.h_over_dp, s.h_over_dp);
-  EXPECT_EQ(r.cfl, s.cfl);
-  EXPECT_EQ(r.viscosity, s.viscosity);
-  EXPECT_EQ(r.artificial_alpha, s.artificial_alpha);
-  EXPECT_EQ(r.density_diffusion, s.density_diffusion);
-  EXPECT_EQ(r.diffusion_delta, s.diffusion_delta);
-  EXPECT_EQ(r.shifting, s.shifting);
-  EXPECT_EQ(r.shifting_coefficient, s.shifting_coefficient);
-  EXPECT_EQ(r.shifting_surface_threshold, s.shifting_surface_threshold);
-  EXPECT_EQ(r.lambda_threshold, s.lambda_threshold);
-  EXPECT_EQ(r.normal_epsilon, s.normal_epsilon);
-  EXPECT_EQ(r.surface_offset, s.surface_offset);
-  EXPECT_EQ(r.curvature_correction, s.curvature_correction);
-  EXPECT_EQ(r.zero_net_surface_force, s.zero_net_surface_force);
+  EXPECT_EQ(r.numerics.cfl, s.numerics.cfl);
+  EXPECT_EQ(r.numerics.viscosity.model, s.numerics.viscosity.model);
+  EXPECT_EQ(r.numerics.viscosity.alpha, s.numerics.viscosity.alpha);
+  EXPECT_EQ(r.numerics.density_diffusion.model, s.numerics.density_diffusion.model);
+  EXPECT_EQ(r.numerics.density_diffusion.delta, s.numerics.density_diffusion.delta);
+  EXPECT_EQ(r.numerics.shifting.model, s.numerics.shifting.model);
+  EXPECT_EQ(r.numerics.shifting.coefficient, s.numerics.shifting.coefficient);
+  EXPECT_EQ(r.numerics.shifting.surface_threshold, s.numerics.shifting.surface_threshold);
+  EXPECT_EQ(r.numerics.surface_tension.lambda_threshold,
+            s.numerics.surface_tension.lambda_threshold);
+  EXPECT_EQ(r.numerics.surface_tension.normal_epsilon, s.numerics.surface_tension.normal_epsilon);
+  EXPECT_EQ(r.numerics.surface_tension.surface_offset, s.numerics.surface_tension.surface_offset);
+  EXPECT_EQ(r.numerics.surface_tension.curvature_correction,
+            s.numerics.surface_tension.curvature_correction);
+  EXPECT_EQ(r.numerics.surface_tension.zero_net_force, s.numerics.surface_tension.zero_net_force);
   EXPECT_EQ(r.vres_conserve_momentum, s.vres_conserve_momentum);
   EXPECT_EQ(r.vres_buffer_fill_min, s.vres_buffer_fill_min);
-  EXPECT_EQ(r.hydrostatic_initial_density, s.hydrostatic_initial_density);
+  EXPECT_EQ(r.numerics.hydrostatic_initial_density, s.numerics.hydrostatic_initial_density);
   EXPECT_EQ(r.fluid_blocks, s.fluid_blocks);
   EXPECT_EQ(r.wall_blocks, s.wall_blocks);
   EXPECT_EQ(r.domain_min, s.domain_min);
@@ -251,7 +253,7 @@ TEST(CaseParser, RoundTripEveryKey) {
   EXPECT_EQ(s.fluid_blocks[0].fill, FillMode::rings);
   EXPECT_EQ(s.refinements[1].dp_ratio, 2);
   EXPECT_FALSE(s.write_vtp);
-  EXPECT_TRUE(s.curvature_correction);
+  EXPECT_TRUE(s.numerics.surface_tension.curvature_correction);
   EXPECT_TRUE(s.vres_conserve_momentum);
   EXPECT_EQ(s.vres_buffer_fill_min, 0.3);
 }
@@ -262,7 +264,7 @@ TEST(CaseParser, ZeroNetSurfaceForceOnlyWithoutWalls) {
   const std::string drop =
       std::string(kMinimal) + "[numerics]\nsurface_tension = { zero_net_force = true }\n";
   const CaseSpec s = parse_text(drop);
-  EXPECT_TRUE(s.zero_net_surface_force);
+  EXPECT_TRUE(s.numerics.surface_tension.zero_net_force);
   EXPECT_EQ(reparse(case_to_toml(s)), s);
   expect_contains(error_of(drop + "[[wall_block]]\nshape = \"box\"\nmin = [0, 0]\nmax = [1, 1]\n"),
                   {"numerics.surface_tension.zero_net_force", "true with walls",
@@ -395,17 +397,17 @@ TEST(CaseOverride, ScalarArrayElementInlineTableAndBareWord) {
   EXPECT_DOUBLE_EQ(s.dp, 5e-5);
   EXPECT_DOUBLE_EQ(s.end_time, 0.01);
   EXPECT_DOUBLE_EQ(s.fluid_blocks[0].radius, 0.001);
-  EXPECT_EQ(s.shifting, ShiftingModel::skillen);
-  EXPECT_DOUBLE_EQ(s.shifting_coefficient, 2.0);  // the skillen default
-  EXPECT_DOUBLE_EQ(s.shifting_surface_threshold, 1.2);
-  EXPECT_EQ(s.gravity, (Vec3d{0, -9.81, 0}));
+  EXPECT_EQ(s.numerics.shifting.model, ShiftingModel::skillen);
+  EXPECT_DOUBLE_EQ(s.numerics.shifting.coefficient, 2.0);  // the skillen default
+  EXPECT_DOUBLE_EQ(s.numerics.shifting.surface_threshold, 1.2);
+  EXPECT_EQ(s.fluid.gravity, (Vec3d{0, -9.81, 0}));
   EXPECT_EQ(s.name, "other_name");
   EXPECT_FALSE(s.write_vtp);
-  EXPECT_FALSE(s.hydrostatic_initial_density);
+  EXPECT_FALSE(s.numerics.hydrostatic_initial_density);
   // Missing intermediate tables are created; array elements can be replaced by index.
   const CaseSpec t = parse_text(kMinimal, {"numerics.viscosity.model=artificial",
                                            "fluid_block.0.center.1=0.5", "case.name=\"quoted\""});
-  EXPECT_EQ(t.viscosity, ViscosityModel::artificial);
+  EXPECT_EQ(t.numerics.viscosity.model, ViscosityModel::artificial);
   EXPECT_DOUBLE_EQ(t.fluid_blocks[0].center[1], 0.5);
   EXPECT_EQ(t.name, "quoted");
 }

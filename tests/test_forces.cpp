@@ -33,11 +33,11 @@ SolverParams<D> make_params(double dp, ViscosityModel vm, DiffusionModel dm) {
   prm.kernel = WendlandC2<D>(prm.h);
   prm.eos = TaitEos(kRho0, 7.0, c0);
   prm.mass = kRho0 * std::pow(dp, D);
-  prm.viscosity = vm;
-  prm.nu = vm == ViscosityModel::laminar ? 1e-3 : 0.0;  // large, so the term is not negligible
-  prm.alpha_c0_h = 0.1 * c0 * prm.h;
-  prm.diffusion = dm;
-  prm.two_delta_h_c0 = 2.0 * 0.1 * prm.h * c0;
+  prm.viscosity.model = vm;
+  prm.viscosity.nu = vm == ViscosityModel::laminar ? 1e-3 : 0.0;  // large, so the term is not negligible
+  prm.viscosity.alpha_c0_h = 0.1 * c0 * prm.h;
+  prm.density_diffusion.model = dm;
+  prm.density_diffusion.two_delta_h_c0 = 2.0 * 0.1 * prm.h * c0;
   return prm;
 }
 
@@ -139,7 +139,7 @@ TYPED_TEST(ForcesTest, MolteniDiffusionIsAntisymmetric) {
                                {vel, 0.01, 0.0, 0}, 21);
     compute_forces(c.prm, c.ps, c.grid);
     const std::vector<double> none = c.ps.drho;
-    c.prm.diffusion = DiffusionModel::molteni;
+    c.prm.density_diffusion.model = DiffusionModel::molteni;
     compute_forces(c.prm, c.ps, c.grid);
     double total = 0.0, scale = 0.0, rounding = 0.0;
     for (std::size_t i = 0; i < c.ps.size(); ++i) {
@@ -195,17 +195,17 @@ double fourtakas_over_molteni(double c0_factor) {
   }
   const double g = 9.81, c0 = c0_factor * std::sqrt(g * (top - bottom));
   c.prm.eos = TaitEos(kRho0, 7.0, c0);
-  c.prm.two_delta_h_c0 = 2.0 * 0.1 * c.prm.h * c0;
+  c.prm.density_diffusion.two_delta_h_c0 = 2.0 * 0.1 * c.prm.h * c0;
   c.prm.gravity[vert] = -g;
   c.prm.up[vert] = 1.0;
-  c.prm.rho0_g_over_b = kRho0 * g / c.prm.eos.b;
+  c.prm.density_diffusion.rho0_g_over_b = kRho0 * g / c.prm.eos.b;
   for (std::size_t i = 0; i < c.ps.size(); ++i) {
     c.ps.rho[i] = c.prm.eos.density(kRho0 * g * (top - c.ps.pos[i][vert]));
   }
   std::map<DiffusionModel, std::vector<double>> d;
   for (DiffusionModel dm :
        {DiffusionModel::none, DiffusionModel::molteni, DiffusionModel::fourtakas}) {
-    c.prm.diffusion = dm;
+    c.prm.density_diffusion.model = dm;
     compute_forces(c.prm, c.ps, c.grid);
     d[dm] = c.ps.drho;
   }
@@ -238,7 +238,7 @@ TYPED_TEST(ForcesTest, DiffusionIgnoresWallDensity) {
   constexpr int D = TypeParam::value;
   for (DiffusionModel dm : {DiffusionModel::molteni, DiffusionModel::fourtakas}) {
     Cloud<D> c = make_cloud<D>(side<D>(), ViscosityModel::artificial, dm, {0.0, 0.01, 0.0, 3}, 51);
-    c.prm.rho0_g_over_b = kRho0 * 9.81 / c.prm.eos.b;
+    c.prm.density_diffusion.rho0_g_over_b = kRho0 * 9.81 / c.prm.eos.b;
     c.prm.up[vertical_axis<D>()] = 1.0;
     compute_forces(c.prm, c.ps, c.grid);
     const auto drho = c.ps.drho;
@@ -294,11 +294,11 @@ CaseSpec dam_break_spec() {
   CaseSpec s;
   s.name = "thread_check";
   s.dimension = D;
-  s.gravity = {0.0, 0.0, 0.0};
-  s.gravity[static_cast<std::size_t>(vertical_axis<D>())] = -9.81;
-  s.viscosity = ViscosityModel::artificial;
-  s.artificial_alpha = 0.1;
-  s.density_diffusion = DiffusionModel::fourtakas;
+  s.fluid.gravity = {0.0, 0.0, 0.0};
+  s.fluid.gravity[static_cast<std::size_t>(vertical_axis<D>())] = -9.81;
+  s.numerics.viscosity.model = ViscosityModel::artificial;
+  s.numerics.viscosity.alpha = 0.1;
+  s.numerics.density_diffusion.model = DiffusionModel::fourtakas;
   FluidBlock f;
   f.shape = BlockShape::box;
   WallBlock w;

@@ -30,10 +30,10 @@ SolverParams<D> make_params(double dp, double hdp, double c0) {
   prm.kernel = WendlandC2<D>(prm.h);
   prm.eos = TaitEos(kRho0, 7.0, c0);
   prm.mass = kRho0 * std::pow(dp, D);
-  prm.viscosity = ViscosityModel::laminar;
-  prm.nu = 0.0;
-  prm.diffusion = DiffusionModel::none;
-  prm.two_delta_h_c0 = 0.0;
+  prm.viscosity.model = ViscosityModel::laminar;
+  prm.viscosity.nu = 0.0;
+  prm.density_diffusion.model = DiffusionModel::none;
+  prm.density_diffusion.two_delta_h_c0 = 0.0;
   return prm;
 }
 

@@ -24,7 +24,7 @@ TEST(PhysicsHydrostatic, PressureFollowsRhoGDepth) {
   while (sim.time() < spec.end_time - 1e-12) sim.step();
   sim.update_pressure();
   const auto& ps = sim.particles();
-  const double dp = spec.dp, rho_g = spec.density * 9.81;
+  const double dp = spec.dp, rho_g = spec.fluid.density * 9.81;
   double top = -1e300;
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (ps.kind[i] == Kind::fluid) top = std::max(top, ps.pos[i][1]);

@@ -27,11 +27,11 @@ namespace {
 constexpr double kRho0 = 1000.0;
 
 template <int D>
-ShiftingParams shifting_params(ShiftingModel model, double dp) {
-  ShiftingParams s;
+ShiftingLevel shifting_params(ShiftingModel model, double dp) {
+  ShiftingLevel s;
   s.model = model;
   s.coefficient = model == ShiftingModel::skillen ? 2.0 : 0.05;
-  s.threshold = D == 2 ? 1.5 : 2.75;
+  s.surface_threshold = D == 2 ? 1.5 : 2.75;
   s.dp = dp;
   s.h = 1.3 * dp;
   return s;
@@ -72,8 +72,8 @@ void check_lattice_interior(int n) {
   surface_sums(prm, ps, grid, sf);
 
   const double dt = 0.2 * prm.h / 10.0, speed = 0.5;
-  const ShiftingParams lind = shifting_params<D>(ShiftingModel::lind, dp);
-  const ShiftingParams skillen = shifting_params<D>(ShiftingModel::skillen, dp);
+  const ShiftingLevel lind = shifting_params<D>(ShiftingModel::lind, dp);
+  const ShiftingLevel skillen = shifting_params<D>(ShiftingModel::skillen, dp);
   double worst_gc = 0.0, worst_dr = 0.0, div_min = 1e9, div_max = -1e9;
   double edge_dr = 0.0;
   std::size_t inner = 0;
@@ -116,7 +116,7 @@ TEST(ShiftingLattice, InteriorDoesNotMove3D) { check_lattice_interior<3>(10); }
 TEST(ShiftingDisplacement, ClampsEachComponentAtTenthOfDp) {
   const double dp = 1e-4;
   for (ShiftingModel model : {ShiftingModel::lind, ShiftingModel::skillen}) {
-    const ShiftingParams s = shifting_params<2>(model, dp);
+    const ShiftingLevel s = shifting_params<2>(model, dp);
     // Huge gradient: both components at the cap, signs opposite to grad C.
     const Vec<2> big{{3.0e8, -5.0e8}};
     const Vec<2> dr = shifting_displacement<2>(s, big, 2.0, 1.0, 1e-5);
@@ -130,7 +130,7 @@ TEST(ShiftingDisplacement, ClampsEachComponentAtTenthOfDp) {
                                                       : s.coefficient * s.h * 1.0 * 1e-5;
     EXPECT_NEAR(dm[1], -scale * 1.0, 1e-12 * scale);
     // 3D as well.
-    const ShiftingParams s3 = shifting_params<3>(model, dp);
+    const ShiftingLevel s3 = shifting_params<3>(model, dp);
     const Vec<3> dr3 = shifting_displacement<3>(s3, Vec<3>{{1e9, -1e9, 1e9}}, 3.0, 1.0, 1e-5);
     for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(std::abs(dr3[k]), 0.1 * dp);
     EXPECT_LT(dr3[0], 0.0);
@@ -140,8 +140,8 @@ TEST(ShiftingDisplacement, ClampsEachComponentAtTenthOfDp) {
 
 TEST(ShiftingDisplacement, LindMagnitudeAndSurfaceScaling) {
   const double dp = 1e-4;
-  const ShiftingParams s = shifting_params<2>(ShiftingModel::lind, dp);
-  const double h = s.h, T = s.threshold;
+  const ShiftingLevel s = shifting_params<2>(ShiftingModel::lind, dp);
+  const double h = s.h, T = s.surface_threshold;
   const Vec<2> gc{{40.0, -25.0}};  // 1/m: small enough to stay below the cap
   // Bulk (div r = D): dr = -A h^2 grad C exactly.
   const Vec<2> bulk = shifting_displacement<2>(s, gc, 2.0, 0.0, 1e-5);
@@ -164,7 +164,7 @@ TEST(ShiftingDisplacement, LindMagnitudeAndSurfaceScaling) {
     for (int k = 0; k < 2; ++k) EXPECT_NEAR(d[k], f * bulk[k], 1e-12 * std::abs(bulk[k])) << div;
   }
   // 3D: T = 2.75, D = 3.
-  const ShiftingParams s3 = shifting_params<3>(ShiftingModel::lind, dp);
+  const ShiftingLevel s3 = shifting_params<3>(ShiftingModel::lind, dp);
   const Vec<3> g3{{10.0, 20.0, -30.0}};
   const Vec<3> b3 = shifting_displacement<3>(s3, g3, 3.0, 0.0, 1e-5);
   const Vec<3> m3 = shifting_displacement<3>(s3, g3, 2.875, 0.0, 1e-5);
@@ -177,7 +177,7 @@ TEST(ShiftingDisplacement, LindMagnitudeAndSurfaceScaling) {
 
 TEST(ShiftingDisplacement, SkillenScalesWithSpeedTimesDt) {
   const double dp = 1e-4;
-  const ShiftingParams s = shifting_params<2>(ShiftingModel::skillen, dp);
+  const ShiftingLevel s = shifting_params<2>(ShiftingModel::skillen, dp);
   const Vec<2> gc{{400.0, 250.0}};
   const double dt = 2.6e-6;
   // At rest: no displacement, whatever grad C.
@@ -199,7 +199,7 @@ TEST(ShiftingDisplacement, SkillenScalesWithSpeedTimesDt) {
   const Vec<2> half = shifting_displacement<2>(s, gc, 1.75, 0.1, dt);
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(half[k], 0.5 * d1[k], 1e-12 * std::abs(d1[k]));
   // model = none: never.
-  ShiftingParams off = s;
+  ShiftingLevel off = s;
   off.model = ShiftingModel::none;
   EXPECT_EQ(norm(shifting_displacement<2>(off, gc, 2.0, 0.1, dt)), 0.0);
 }

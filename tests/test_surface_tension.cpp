@@ -45,8 +45,8 @@ SolverParams<D> make_params(double dp, double hdp) {
   prm.eos = TaitEos(kRho0, 7.0, 10.0);
   prm.mass = kRho0 * std::pow(dp, D);
   prm.sigma = kSigma;
-  prm.lambda_threshold = 0.7;
-  prm.normal_epsilon = 0.1;
+  prm.surface_tension.lambda_threshold = 0.7;
+  prm.surface_tension.normal_epsilon = 0.1;
   return prm;
 }
 
@@ -329,7 +329,7 @@ TEST(SurfaceTensionCurvature, CorrectedCurvatureGivesEachRingItsRadius) {
   const double R = 0.002;
   for (double dp : {1e-4, 5e-5}) {
     Static<2> s = make_static<2>(droplet_circle(dp, "rings"), dp);
-    s.prm.curvature_correction = true;
+    s.prm.surface_tension.curvature_correction = true;
     surface_sums(s.prm, s.ps, s.grid, s.sf);
     impose_radial_normals(s, R - 3.0 * dp);
     surface_curvature_force(s.prm, s.ps, s.grid, s.sf);
@@ -344,7 +344,7 @@ TEST(SurfaceTensionCurvature, CorrectedCurvatureGivesEachRingItsRadius) {
   }
   const double dp = 1e-4;
   Static<3> s = make_static<3>(sphere_shells(R, dp), dp);
-  s.prm.curvature_correction = true;
+  s.prm.surface_tension.curvature_correction = true;
   surface_sums(s.prm, s.ps, s.grid, s.sf);
   impose_radial_normals(s, R - 3.0 * dp);
   surface_curvature_force(s.prm, s.ps, s.grid, s.sf);

@@ -10,9 +10,36 @@
 //    variant): the force pass leaves them out.
 #pragma once
 
+#include "vrsph/physics/eos.hpp"
+
 namespace vrsph {
 
 enum class DiffusionModel { none, molteni, fourtakas };
+
+// numerics.density_diffusion, as the case gives it.
+struct DiffusionParams {
+  DiffusionModel model = DiffusionModel::molteni;
+  double delta = 0.1;  // delta-SPH coefficient delta (dimensionless)
+
+  bool operator==(const DiffusionParams&) const = default;
+};
+
+// The model on one level, with the numbers the force pass reads.
+struct DiffusionLevel : DiffusionParams {
+  double two_delta_h_c0 = 0.0;   // 2 delta h c0 (m^2/s)
+  double rho0_g_over_b = 0.0;    // rho0 |g| / B (1/m): Fourtakas
+  double inv_gamma = 1.0 / 7.0;  // 1 / gamma of the EOS (dimensionless): Fourtakas
+};
+
+// g: |gravity| (m/s^2); h: smoothing length (m).
+inline DiffusionLevel diffusion_level(const DiffusionParams& p, const TaitEos& eos, double g,
+                                      double h) {
+  DiffusionLevel d{p};
+  d.two_delta_h_c0 = 2.0 * p.delta * h * eos.c0;
+  d.rho0_g_over_b = eos.rho0 * g / eos.b;
+  d.inv_gamma = 1.0 / eos.gamma;
+  return d;
+}
 
 inline double molteni_diffusion_pair(double two_delta_h_c0, double vol_j, double rho_i,
                                      double rho_j, double rij_dot_gradw, double inv_r2eta) {

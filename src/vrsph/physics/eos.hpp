@@ -4,8 +4,20 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 
 namespace vrsph {
+
+// [eos], as the case gives it: gamma and the choice of c0 (made at set-up, common to all levels).
+struct EosParams {
+  double gamma = 7.0;                 // exponent of the Tait EOS (dimensionless)
+  std::optional<double> max_speed;    // expected largest speed (m/s); absent: sqrt(|g| H) with
+                                      // gravity, else the largest initial speed
+  double sound_speed_factor = 20.0;   // c0 = factor * max_speed (dimensionless)
+  std::optional<double> sound_speed;  // c0 itself (m/s); overrides the two above
+
+  bool operator==(const EosParams&) const = default;
+};
 
 struct TaitEos {
   double rho0 = 1000.0;

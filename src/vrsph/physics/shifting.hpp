@@ -14,13 +14,27 @@ namespace vrsph {
 
 enum class ShiftingModel { none, lind, skillen };
 
+// numerics.shifting, as the case gives it.
 struct ShiftingParams {
   ShiftingModel model = ShiftingModel::none;
-  double coefficient = 0.0;  // A
-  double threshold = 1.5;    // T
-  double h = 0.0;
-  double dp = 0.0;
+  double coefficient = 0.05;       // A (dimensionless): 0.05 for lind, 2 for skillen by default
+  double surface_threshold = 1.5;  // T (dimensionless): no shift where div r < T; 2.75 in 3D
+
+  bool operator==(const ShiftingParams&) const = default;
 };
+
+// The model on one level, with the lengths the displacement needs.
+struct ShiftingLevel : ShiftingParams {
+  double h = 0.0;   // smoothing length (m)
+  double dp = 0.0;  // particle spacing (m): each component of dr is kept within 0.1 dp
+};
+
+inline ShiftingLevel shifting_level(const ShiftingParams& p, double h, double dp) {
+  ShiftingLevel s{p};
+  s.h = h;
+  s.dp = dp;
+  return s;
+}
 
 // Pair contributions of the two sums, with vol_f = V_j F (grad_i W_ij = F r_ij):
 // grad C_i += V_j F r_ij (component r_a of r_ij), div r_i += -V_j F r^2.
@@ -28,12 +42,12 @@ inline double colour_gradient_pair(double vol_f, double r_a) { return vol_f * r_
 inline double position_divergence_pair(double vol_f, double r2) { return -vol_f * r2; }
 
 template <int D>
-inline Vec<D> shifting_displacement(const ShiftingParams& s, const Vec<D>& grad_c, double div_r,
+inline Vec<D> shifting_displacement(const ShiftingLevel& s, const Vec<D>& grad_c, double div_r,
                                     double speed, double dt) {
-  if (s.model == ShiftingModel::none || div_r < s.threshold) return Vec<D>{};
+  if (s.model == ShiftingModel::none || div_r < s.surface_threshold) return Vec<D>{};
   const double scale = s.model == ShiftingModel::lind ? s.coefficient * s.h * s.h
                                                       : s.coefficient * s.h * speed * dt;
-  const double surface = (div_r - s.threshold) / (D - s.threshold);
+  const double surface = (div_r - s.surface_threshold) / (D - s.surface_threshold);
   Vec<D> dr = grad_c * (-scale * surface);
   const double cap = 0.1 * s.dp;
   for (int k = 0; k < D; ++k) dr[k] = std::clamp(dr[k], -cap, cap);

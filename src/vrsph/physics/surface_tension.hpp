@@ -21,6 +21,17 @@
 
 namespace vrsph {
 
+// numerics.surface_tension, as the case gives it (sigma itself is fluid.surface_tension).
+struct SurfaceTensionParams {
+  double lambda_threshold = 0.7;  // step 2 (dimensionless): difference form where lambda_i >= it
+  double normal_epsilon = 0.1;    // step 2, eps (dimensionless): n_i = 0 below eps lambda_i / h
+  bool surface_offset = false;    // step 3: curvature_at_surface() in the force (not Cen)
+  bool curvature_correction = false;  // step 3: corrected_curvature() (not Cen)
+  bool zero_net_force = false;        // remove the net capillary force (closed surfaces; not Cen)
+
+  bool operator==(const SurfaceTensionParams&) const = default;
+};
+
 // Pair contributions of step 1, vol_f = V_j F (grad_i W_ij = F r_ij): the entry (a, b) of M_i,
 // V_j (r_j - r_i)_a (grad_i W_ij)_b = -V_j F r_a r_b, and the Shepard sum V_j W_ij of phi_i.
 inline double correction_matrix_pair(double vol_f, double r_a, double r_b) {

@@ -16,6 +16,29 @@ namespace vrsph {
 
 enum class ViscosityModel { laminar, artificial };
 
+// numerics.viscosity, as the case gives it.
+struct ViscosityParams {
+  ViscosityModel model = ViscosityModel::laminar;
+  double alpha = 0.01;  // artificial viscosity coefficient alpha (dimensionless); artificial only
+
+  bool operator==(const ViscosityParams&) const = default;
+};
+
+// The model on one level, with the numbers the force pass reads.
+struct ViscosityLevel : ViscosityParams {
+  double nu = 0.0;          // kinematic viscosity applied (m^2/s): the fluid's if laminar, else 0
+  double alpha_c0_h = 0.0;  // alpha c0 h (m^2/s): artificial
+};
+
+// nu_fluid: fluid.kinematic_viscosity (m^2/s); c0: speed of sound (m/s); h: smoothing length (m).
+inline ViscosityLevel viscosity_level(const ViscosityParams& p, double nu_fluid, double c0,
+                                      double h) {
+  ViscosityLevel v{p};
+  v.nu = p.model == ViscosityModel::laminar ? nu_fluid : 0.0;
+  v.alpha_c0_h = p.alpha * c0 * h;
+  return v;
+}
+
 inline double laminar_viscosity_pair(double m_j, double nu, double rij_dot_gradw, double inv_r2eta,
                                      double rho_i, double rho_j) {
   return m_j * 4.0 * nu * rij_dot_gradw * inv_r2eta / (rho_i + rho_j);

@@ -26,12 +26,6 @@ constexpr std::string_view kNumericsKeys[] = {
     "cfl",      "viscosity",       "density_diffusion",
     "shifting", "surface_tension", "hydrostatic_initial_density", "vres_conserve_momentum",
     "vres_buffer_fill_min"};
-constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
-constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
-constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
-constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon",
-                                                      "surface_offset", "curvature_correction",
-                                                      "zero_net_force"};
 constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",  "min",
                                                 "max",   "fill",   "velocity", "pressure"};
 constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
@@ -94,60 +88,83 @@ void parse_case_table(const TableReader& r, CaseSpec& spec) {
 void parse_resolution_and_fluid(const TableReader& res, const TableReader& fl, CaseSpec& spec) {
   spec.dp = res.req("dp", res.opt_number("dp", kPositive));
   spec.h_over_dp = res.opt_number("h_over_dp", kPositive).value_or(spec.h_over_dp);
-  spec.density = fl.opt_number("density", kPositive).value_or(spec.density);
-  spec.kinematic_viscosity =
-      fl.opt_number("kinematic_viscosity", kNonNegative).value_or(spec.kinematic_viscosity);
-  spec.surface_tension =
-      fl.opt_number("surface_tension", kNonNegative).value_or(spec.surface_tension);
-  spec.gravity = fl.opt_vector("gravity", spec.dimension).value_or(Vec3d{});
+  FluidSpec& f = spec.fluid;
+  f.density = fl.opt_number("density", kPositive).value_or(f.density);
+  f.kinematic_viscosity =
+      fl.opt_number("kinematic_viscosity", kNonNegative).value_or(f.kinematic_viscosity);
+  f.surface_tension = fl.opt_number("surface_tension", kNonNegative).value_or(f.surface_tension);
+  f.gravity = fl.opt_vector("gravity", spec.dimension).value_or(Vec3d{});
 }
 
 // [eos]: gamma, max_speed (optional), sound_speed_factor, sound_speed (optional).
-void parse_eos(const TableReader& r, CaseSpec& spec) {
-  spec.gamma = r.opt_number("gamma", kPositive).value_or(spec.gamma);
-  spec.max_speed = r.opt_number("max_speed", kPositive);
-  spec.sound_speed_factor =
-      r.opt_number("sound_speed_factor", kPositive).value_or(spec.sound_speed_factor);
-  spec.sound_speed = r.opt_number("sound_speed", kPositive);
+void parse_eos(const TableReader& r, EosParams& p) {
+  p.gamma = r.opt_number("gamma", kPositive).value_or(p.gamma);
+  p.max_speed = r.opt_number("max_speed", kPositive);
+  p.sound_speed_factor =
+      r.opt_number("sound_speed_factor", kPositive).value_or(p.sound_speed_factor);
+  p.sound_speed = r.opt_number("sound_speed", kPositive);
+}
+
+// The model tables of [numerics] (inline tables), each read into its physics/ struct. `n` is
+// the [numerics] reader.
+
+// numerics.viscosity: model (default laminar), alpha.
+constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
+void read_viscosity(const TableReader& n, ViscosityParams& p) {
+  const auto r = n.sub_table("viscosity", kViscosityKeys);
+  p.model = r.opt_enum("model", kViscosityNames).value_or(p.model);
+  p.alpha = r.opt_number("alpha", kNonNegative).value_or(p.alpha);
+}
+
+// numerics.density_diffusion: model (default molteni), delta.
+constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
+void read_density_diffusion(const TableReader& n, DiffusionParams& p) {
+  const auto r = n.sub_table("density_diffusion", kDiffusionKeys);
+  p.model = r.opt_enum("model", kDiffusionNames).value_or(p.model);
+  p.delta = r.opt_number("delta", kNonNegative).value_or(p.delta);
 }
 
 // numerics.shifting: model (default none), coefficient (0.05 lind / 2 skillen),
 // surface_threshold (1.5 in 2D, 2.75 in 3D; must lie in [0, dimension)).
-void parse_shifting(const TableReader& r, CaseSpec& spec) {
-  spec.shifting = r.opt_enum("model", kShiftingNames).value_or(spec.shifting);
-  const double coefficient = spec.shifting == ShiftingModel::skillen ? 2.0 : 0.05;
-  spec.shifting_coefficient = r.opt_number("coefficient", kNonNegative).value_or(coefficient);
-  const double threshold = spec.dimension == 2 ? 1.5 : 2.75;
-  spec.shifting_surface_threshold =
-      r.opt_number("surface_threshold", kNonNegative).value_or(threshold);
-  r.require("surface_threshold", spec.shifting_surface_threshold < spec.dimension,
-            fmt::format("must be < dimension ({})", spec.dimension));
+constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
+void read_shifting(const TableReader& n, int dim, ShiftingParams& p) {
+  const auto r = n.sub_table("shifting", kShiftingKeys);
+  p.model = r.opt_enum("model", kShiftingNames).value_or(p.model);
+  const double coefficient = p.model == ShiftingModel::skillen ? 2.0 : 0.05;
+  p.coefficient = r.opt_number("coefficient", kNonNegative).value_or(coefficient);
+  const double threshold = dim == 2 ? 1.5 : 2.75;
+  p.surface_threshold = r.opt_number("surface_threshold", kNonNegative).value_or(threshold);
+  r.require("surface_threshold", p.surface_threshold < dim,
+            fmt::format("must be < dimension ({})", dim));
 }
 
-// [numerics]: cfl and the model choices (inline tables).
+// numerics.surface_tension: the normal's thresholds and the options beyond Cen et al.
+constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon",
+                                                    "surface_offset", "curvature_correction",
+                                                    "zero_net_force"};
+void read_surface_tension(const TableReader& n, SurfaceTensionParams& p) {
+  const auto r = n.sub_table("surface_tension", kSurfaceTensionKeys);
+  p.lambda_threshold = r.opt_number("lambda_threshold", kUnitClosed).value_or(p.lambda_threshold);
+  p.normal_epsilon = r.opt_number("normal_epsilon", kNonNegative).value_or(p.normal_epsilon);
+  p.surface_offset = r.opt_bool("surface_offset").value_or(p.surface_offset);
+  p.curvature_correction = r.opt_bool("curvature_correction").value_or(p.curvature_correction);
+  p.zero_net_force = r.opt_bool("zero_net_force").value_or(p.zero_net_force);
+}
+
+// [numerics]: cfl, the model tables, the coupling's two keys and the initial density.
 void parse_numerics(const TableReader& r, CaseSpec& spec) {
-  spec.cfl = r.opt_number("cfl", kUnitHalfOpen).value_or(spec.cfl);
-  const auto visc = r.sub_table("viscosity", kViscosityKeys);
-  spec.viscosity = visc.opt_enum("model", kViscosityNames).value_or(spec.viscosity);
-  spec.artificial_alpha = visc.opt_number("alpha", kNonNegative).value_or(spec.artificial_alpha);
-  const auto diff = r.sub_table("density_diffusion", kDiffusionKeys);
-  spec.density_diffusion = diff.opt_enum("model", kDiffusionNames).value_or(spec.density_diffusion);
-  spec.diffusion_delta = diff.opt_number("delta", kNonNegative).value_or(spec.diffusion_delta);
-  parse_shifting(r.sub_table("shifting", kShiftingKeys), spec);
-  const auto st = r.sub_table("surface_tension", kSurfaceTensionKeys);
-  spec.lambda_threshold =
-      st.opt_number("lambda_threshold", kUnitClosed).value_or(spec.lambda_threshold);
-  spec.normal_epsilon = st.opt_number("normal_epsilon", kNonNegative).value_or(spec.normal_epsilon);
-  spec.surface_offset = st.opt_bool("surface_offset").value_or(spec.surface_offset);
-  spec.curvature_correction =
-      st.opt_bool("curvature_correction").value_or(spec.curvature_correction);
-  spec.zero_net_surface_force = st.opt_bool("zero_net_force").value_or(spec.zero_net_surface_force);
+  NumericsSpec& n = spec.numerics;
+  n.cfl = r.opt_number("cfl", kUnitHalfOpen).value_or(n.cfl);
+  read_viscosity(r, n.viscosity);
+  read_density_diffusion(r, n.density_diffusion);
+  read_shifting(r, spec.dimension, n.shifting);
+  read_surface_tension(r, n.surface_tension);
   spec.vres_conserve_momentum =
       r.opt_bool("vres_conserve_momentum").value_or(spec.vres_conserve_momentum);
   spec.vres_buffer_fill_min =
       r.opt_number("vres_buffer_fill_min", kBelowHalf).value_or(spec.vres_buffer_fill_min);
-  spec.hydrostatic_initial_density =
-      r.opt_bool("hydrostatic_initial_density").value_or(spec.hydrostatic_initial_density);
+  n.hydrostatic_initial_density =
+      r.opt_bool("hydrostatic_initial_density").value_or(n.hydrostatic_initial_density);
 }
 
 // One [[fluid_block]]: circle/sphere (center, radius >= dp) or box (min, max).
@@ -255,7 +272,7 @@ CaseSpec parse_case(const toml::table& tbl, const std::string& source_name) {
   parse_case_table(root.sub_table("case", kCaseKeys), spec);
   parse_resolution_and_fluid(root.sub_table("resolution", kResolutionKeys),
                              root.sub_table("fluid", kFluidKeys), spec);
-  parse_eos(root.sub_table("eos", kEosKeys), spec);
+  parse_eos(root.sub_table("eos", kEosKeys), spec.eos);
   parse_numerics(root.sub_table("numerics", kNumericsKeys), spec);
   for (const auto& r : root.table_array("fluid_block", kFluidBlockKeys)) {
     spec.fluid_blocks.push_back(parse_fluid_block(r, spec));
@@ -267,7 +284,8 @@ CaseSpec parse_case(const toml::table& tbl, const std::string& source_name) {
   }
   root.sub_table("numerics", kNumericsKeys)
       .sub_table("surface_tension", kSurfaceTensionKeys)
-      .require("zero_net_force", !(spec.zero_net_surface_force && !spec.wall_blocks.empty()),
+      .require("zero_net_force",
+               !(spec.numerics.surface_tension.zero_net_force && !spec.wall_blocks.empty()),
                "true with walls: the net capillary force is zero only on a closed free surface "
                "(drops); with walls it is real");
   parse_domain(root.sub_table("domain", kDomainKeys), spec);

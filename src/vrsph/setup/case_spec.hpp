@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "vrsph/physics/density_diffusion.hpp"
+#include "vrsph/physics/eos.hpp"
 #include "vrsph/physics/shifting.hpp"
+#include "vrsph/physics/surface_tension.hpp"
 #include "vrsph/physics/viscosity.hpp"
 
 namespace vrsph {
@@ -63,45 +65,45 @@ struct OutputLine {
   bool operator==(const OutputLine&) const = default;
 };
 
+// [fluid]
+struct FluidSpec {
+  double density = 1000.0;              // rho0 (kg/m^3)
+  double kinematic_viscosity = 1.0e-6;  // nu (m^2/s), used by the laminar model
+  double surface_tension = 0.0;         // sigma (N/m); 0: no surface tension
+  Vec3d gravity{};                      // g (m/s^2)
+
+  bool operator==(const FluidSpec&) const = default;
+};
+
+// [numerics]: the time step, one table per model (each the model's own struct) and the start.
+struct NumericsSpec {
+  double cfl = 0.2;  // CFL number of the time step (dimensionless)
+  ViscosityParams viscosity;
+  DiffusionParams density_diffusion;
+  ShiftingParams shifting;
+  SurfaceTensionParams surface_tension;
+  bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
+
+  bool operator==(const NumericsSpec&) const = default;
+};
+
 struct CaseSpec {
   // [case]
   std::string name;
   int dimension = 2;
   double end_time = 0.0;
 
-  // [fluid]
-  double density = 1000.0;
-  double kinematic_viscosity = 1.0e-6;
-  double surface_tension = 0.0;
-  Vec3d gravity{};
-
-  // [eos]
-  double gamma = 7.0;
-  std::optional<double> max_speed;  // when absent: sqrt(|g| H) for gravity cases
-  double sound_speed_factor = 20.0;
-  std::optional<double> sound_speed;  // overrides the two above
+  FluidSpec fluid;
+  EosParams eos;
 
   // [resolution]
   double dp = 0.0;
   double h_over_dp = 1.3;
 
-  // [numerics]
-  double cfl = 0.2;
-  ViscosityModel viscosity = ViscosityModel::laminar;
-  double artificial_alpha = 0.01;
-  DiffusionModel density_diffusion = DiffusionModel::molteni;
-  double diffusion_delta = 0.1;
-  ShiftingModel shifting = ShiftingModel::none;
-  double shifting_coefficient = 0.05;       // lind default; skillen default is 2
-  double shifting_surface_threshold = 1.5;  // 2.75 in 3D by default
-  double lambda_threshold = 0.7;
-  double normal_epsilon = 0.1;
-  bool surface_offset = false;  // curvature referred to the free surface dp/2 outside (not Cen)
-  bool curvature_correction = false;  // stencil-consistent curvature (not Cen)
-  bool zero_net_surface_force = false;  // remove the net capillary force (closed surfaces; not Cen)
+  NumericsSpec numerics;
+  // numerics.vres_*: read by the multi-level coupling (solver/simulation.cpp, vres/)
   bool vres_conserve_momentum = false;  // remove the coupling's net force and momentum jumps
   double vres_buffer_fill_min = 0.0;    // buffer particles below this donor fill are deleted
-  bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
 
   // geometry
   std::vector<FluidBlock> fluid_blocks;

@@ -53,20 +53,20 @@ void write_physics(Writer& w, const CaseSpec& s) {
   w.kv("dimension", fmt::format("{}", dim));
   w.kv("end_time", num(s.end_time), "s");
   w.header("[fluid]");
-  w.kv("density", num(s.density), "kg/m^3");
-  w.kv("kinematic_viscosity", num(s.kinematic_viscosity), "m^2/s");
-  w.kv("surface_tension", num(s.surface_tension), "N/m");
-  w.kv("gravity", vec(s.gravity, dim), "m/s^2");
+  w.kv("density", num(s.fluid.density), "kg/m^3");
+  w.kv("kinematic_viscosity", num(s.fluid.kinematic_viscosity), "m^2/s");
+  w.kv("surface_tension", num(s.fluid.surface_tension), "N/m");
+  w.kv("gravity", vec(s.fluid.gravity, dim), "m/s^2");
   w.header("[eos]");
-  w.kv("gamma", num(s.gamma));
-  if (s.max_speed) {
-    w.kv("max_speed", num(*s.max_speed), "m/s");
+  w.kv("gamma", num(s.eos.gamma));
+  if (s.eos.max_speed) {
+    w.kv("max_speed", num(*s.eos.max_speed), "m/s");
   } else {
     w.comment("max_speed: not set (sqrt(g H) for gravity cases)");
   }
-  w.kv("sound_speed_factor", num(s.sound_speed_factor), "c0 = factor * max_speed");
-  if (s.sound_speed) {
-    w.kv("sound_speed", num(*s.sound_speed), "m/s, overrides the two above");
+  w.kv("sound_speed_factor", num(s.eos.sound_speed_factor), "c0 = factor * max_speed");
+  if (s.eos.sound_speed) {
+    w.kv("sound_speed", num(*s.eos.sound_speed), "m/s, overrides the two above");
   } else {
     w.comment("sound_speed: not set");
   }
@@ -75,29 +75,44 @@ void write_physics(Writer& w, const CaseSpec& s) {
   w.kv("h_over_dp", num(s.h_over_dp));
 }
 
+const char* toml_bool(bool b) { return b ? "true" : "false"; }
+
+// The model tables of [numerics], as inline tables.
+std::string viscosity_table(const ViscosityParams& p) {
+  return fmt::format("{{ model = {}, alpha = {} }}",
+                     toml_quote(enum_name(kViscosityNames, p.model)), num(p.alpha));
+}
+
+std::string density_diffusion_table(const DiffusionParams& p) {
+  return fmt::format("{{ model = {}, delta = {} }}",
+                     toml_quote(enum_name(kDiffusionNames, p.model)), num(p.delta));
+}
+
+std::string shifting_table(const ShiftingParams& p) {
+  return fmt::format("{{ model = {}, coefficient = {}, surface_threshold = {} }}",
+                     toml_quote(enum_name(kShiftingNames, p.model)), num(p.coefficient),
+                     num(p.surface_threshold));
+}
+
+std::string surface_tension_table(const SurfaceTensionParams& p) {
+  return fmt::format(
+      "{{ lambda_threshold = {}, normal_epsilon = {}, surface_offset = {}, "
+      "curvature_correction = {}, zero_net_force = {} }}",
+      num(p.lambda_threshold), num(p.normal_epsilon), toml_bool(p.surface_offset),
+      toml_bool(p.curvature_correction), toml_bool(p.zero_net_force));
+}
+
 // [numerics] with its inline model tables.
 void write_numerics(Writer& w, const CaseSpec& s) {
+  const NumericsSpec& n = s.numerics;
   w.header("[numerics]");
-  w.kv("cfl", num(s.cfl));
-  w.kv("viscosity",
-       fmt::format("{{ model = {}, alpha = {} }}",
-                   toml_quote(enum_name(kViscosityNames, s.viscosity)), num(s.artificial_alpha)),
-       "alpha: artificial only");
-  w.kv("density_diffusion", fmt::format("{{ model = {}, delta = {} }}",
-                                        toml_quote(enum_name(kDiffusionNames, s.density_diffusion)),
-                                        num(s.diffusion_delta)));
-  w.kv("shifting", fmt::format("{{ model = {}, coefficient = {}, surface_threshold = {} }}",
-                               toml_quote(enum_name(kShiftingNames, s.shifting)),
-                               num(s.shifting_coefficient), num(s.shifting_surface_threshold)));
-  w.kv("surface_tension",
-       fmt::format("{{ lambda_threshold = {}, normal_epsilon = {}, surface_offset = {}, "
-                   "curvature_correction = {}, zero_net_force = {} }}",
-                   num(s.lambda_threshold), num(s.normal_epsilon),
-                   s.surface_offset ? "true" : "false",
-                   s.curvature_correction ? "true" : "false",
-                   s.zero_net_surface_force ? "true" : "false"));
-  w.kv("hydrostatic_initial_density", s.hydrostatic_initial_density ? "true" : "false");
-  w.kv("vres_conserve_momentum", s.vres_conserve_momentum ? "true" : "false");
+  w.kv("cfl", num(n.cfl));
+  w.kv("viscosity", viscosity_table(n.viscosity), "alpha: artificial only");
+  w.kv("density_diffusion", density_diffusion_table(n.density_diffusion));
+  w.kv("shifting", shifting_table(n.shifting));
+  w.kv("surface_tension", surface_tension_table(n.surface_tension));
+  w.kv("hydrostatic_initial_density", toml_bool(n.hydrostatic_initial_density));
+  w.kv("vres_conserve_momentum", toml_bool(s.vres_conserve_momentum));
   w.kv("vres_buffer_fill_min", num(s.vres_buffer_fill_min),
        "donor fill below which a buffer particle is deleted (0.5 on a free surface)");
 }

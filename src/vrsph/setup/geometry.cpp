@@ -129,14 +129,14 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
   InitialSet<D> out;
   ParticleSet<D>& ps = out.particles;
   const double dp = spec.dp;
-  const double mass = spec.density * std::pow(dp, D);
+  const double mass = spec.fluid.density * std::pow(dp, D);
   std::uint64_t next_id = 0;
   const int vert = vertical_axis<D>();
   double zmin = 1e300, zmax = -1e300;
   for (const FluidBlock& b : spec.fluid_blocks) {
     const Vec<D> v = to_vec<D>(b.velocity);
     auto add = [&](const Vec<D>& x) {
-      ps.push_back(next_id++, Kind::fluid, x, v, spec.density, mass);
+      ps.push_back(next_id++, Kind::fluid, x, v, spec.fluid.density, mass);
       out.initial_pressure.push_back(b.pressure);
     };
     if (b.shape == BlockShape::box) {
@@ -158,7 +158,7 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
   }
   for (const WallBlock& w : spec.wall_blocks) {
     auto add = [&](const Vec<D>& x) {
-      ps.push_back(next_id++, Kind::wall, x, Vec<D>{}, spec.density, mass);
+      ps.push_back(next_id++, Kind::wall, x, Vec<D>{}, spec.fluid.density, mass);
       out.initial_pressure.push_back(0.0);
     };
     if (w.shape == WallShape::tank) fill_tank<D>(to_vec<D>(w.min), to_vec<D>(w.max), w.layers, dp, add);

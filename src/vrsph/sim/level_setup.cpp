@@ -42,33 +42,26 @@ SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0) {
   prm.h = spec.h_over_dp * dp;
   prm.eta2 = 0.01 * prm.h * prm.h;
   prm.kernel = WendlandC2<D>(prm.h);
-  prm.mass = spec.density * std::pow(dp, D);
-  prm.gravity = to_vec<D>(spec.gravity);
+  prm.mass = spec.fluid.density * std::pow(dp, D);
+  prm.gravity = to_vec<D>(spec.fluid.gravity);
   const double g = norm(prm.gravity);
   prm.up = g > 0.0 ? prm.gravity * (-1.0 / g) : Vec<D>{};
-  prm.eos = TaitEos(spec.density, spec.gamma, c0);
-  prm.inv_gamma = 1.0 / spec.gamma;
-  prm.rho0_g_over_b = spec.density * g / prm.eos.b;
-  if (spec.density_diffusion == DiffusionModel::fourtakas &&
-      prm.rho0_g_over_b * prm.kernel.support() > fourtakas_series_bound) {
+  prm.eos = TaitEos(spec.fluid.density, spec.eos.gamma, c0);
+  prm.cfl = spec.numerics.cfl;
+  prm.sigma = spec.fluid.surface_tension;
+  const NumericsSpec& n = spec.numerics;
+  prm.viscosity = viscosity_level(n.viscosity, spec.fluid.kinematic_viscosity, c0, prm.h);
+  prm.density_diffusion = diffusion_level(n.density_diffusion, prm.eos, g, prm.h);
+  prm.shifting = shifting_level(n.shifting, prm.h, dp);
+  prm.surface_tension = n.surface_tension;
+  const DiffusionLevel& dd = prm.density_diffusion;
+  const double fourtakas_x = dd.rho0_g_over_b * prm.kernel.support();
+  if (dd.model == DiffusionModel::fourtakas && fourtakas_x > fourtakas_series_bound) {
     throw std::invalid_argument(fmt::format(
         "numerics.density_diffusion.model = \"fourtakas\": rho0 g 2h / B = {:.3g} exceeds {:g}: "
         "the speed of sound {:.4g} m/s is too low for this resolution (raise eos.sound_speed)",
-        prm.rho0_g_over_b * prm.kernel.support(), fourtakas_series_bound, c0));
+        fourtakas_x, fourtakas_series_bound, c0));
   }
-  prm.viscosity = spec.viscosity;
-  prm.nu = spec.viscosity == ViscosityModel::laminar ? spec.kinematic_viscosity : 0.0;
-  prm.alpha_c0_h = spec.artificial_alpha * c0 * prm.h;
-  prm.diffusion = spec.density_diffusion;
-  prm.two_delta_h_c0 = 2.0 * spec.diffusion_delta * prm.h * c0;
-  prm.cfl = spec.cfl;
-  prm.sigma = spec.surface_tension;
-  prm.lambda_threshold = spec.lambda_threshold;
-  prm.normal_epsilon = spec.normal_epsilon;
-  prm.surface_offset = spec.surface_offset;
-  prm.curvature_correction = spec.curvature_correction;
-  prm.shifting = {spec.shifting, spec.shifting_coefficient, spec.shifting_surface_threshold,
-                  prm.h, dp};
   prm.dt_min = 0.05 * prm.h / c0;
   return prm;
 }
@@ -93,8 +86,8 @@ ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
     if (init.initial_pressure[i] != 0.0) all.rho[i] = prm.eos.density(init.initial_pressure[i]);
   }
   const double g = norm(prm.gravity);
-  if (spec.hydrostatic_initial_density && g > 0.0) {
-    apply_hydrostatic_density<D>(all, prm.gravity, spec.density, lay.dp, prm.eos);
+  if (spec.numerics.hydrostatic_initial_density && g > 0.0) {
+    apply_hydrostatic_density<D>(all, prm.gravity, spec.fluid.density, lay.dp, prm.eos);
   }
   ParticleSet<D> ps;
   std::uint64_t id = first_id;

@@ -42,24 +42,24 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
   InitialSet<D> init0 = level_fill<D>(spec, spec.dp);
   {
     setup_.fluid_height = init0.fluid_height;
-    const double g = norm(to_vec<D>(spec.gravity));
-    if (!spec.max_speed) {
+    const double g = norm(to_vec<D>(spec.fluid.gravity));
+    if (!spec.eos.max_speed) {
       if (g > 0.0 && setup_.fluid_height > 0.0) {
-        spec.max_speed = std::sqrt(g * setup_.fluid_height);
+        spec.eos.max_speed = std::sqrt(g * setup_.fluid_height);
       } else {
         double vmax = 0.0;
         for (const auto& v : init0.particles.vel) vmax = std::max(vmax, norm(v));
-        if (vmax > 0.0) spec.max_speed = vmax;
+        if (vmax > 0.0) spec.eos.max_speed = vmax;
       }
     }
   }
-  if (!spec.sound_speed && !spec.max_speed) {
+  if (!spec.eos.sound_speed && !spec.eos.max_speed) {
     throw std::invalid_argument(
         "eos.max_speed: missing: needed to set the speed of sound when there is no gravity and no "
         "initial velocity (give eos.max_speed or eos.sound_speed)");
   }
-  setup_.max_speed = spec.max_speed.value_or(0.0);
-  setup_.c0 = spec.sound_speed ? *spec.sound_speed : spec.sound_speed_factor * *spec.max_speed;
+  setup_.max_speed = spec.eos.max_speed.value_or(0.0);
+  setup_.c0 = spec.eos.sound_speed ? *spec.eos.sound_speed : spec.eos.sound_speed_factor * *spec.eos.max_speed;
 
   std::uint64_t next_id = 0;
   std::vector<LevelLink<D>> links(layout.size());
@@ -73,7 +73,7 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
   }
   counters_.next_id = next_id;
-  const CouplingOptions opt{spec.vres_conserve_momentum, spec.zero_net_surface_force,
+  const CouplingOptions opt{spec.vres_conserve_momentum, spec.numerics.surface_tension.zero_net_force,
                             spec.vres_buffer_fill_min};
   coupling_ = LevelCoupling<D>(std::move(links), opt);
 

@@ -74,9 +74,11 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceB
   using C = ForceCol<D>;
   const double rho_i = me.rho, p_i = me.p, inv_rho_i = 1.0 / rho_i, eta2 = prm.eta2;
   const double vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
-  const double nu = prm.nu, alpha_c0_h = prm.alpha_c0_h, two_delta_h_c0 = prm.two_delta_h_c0;
-  const double up0 = prm.up[0], up1 = prm.up[1], up2 = prm.up[D - 1];
-  const double rho0 = prm.eos.rho0, rho0_g_over_b = prm.rho0_g_over_b, inv_gamma = prm.inv_gamma;
+  const double nu = prm.viscosity.nu, alpha_c0_h = prm.viscosity.alpha_c0_h;
+  const double two_delta_h_c0 = prm.density_diffusion.two_delta_h_c0;
+  const double rho0_g_over_b = prm.density_diffusion.rho0_g_over_b;
+  const double inv_gamma = prm.density_diffusion.inv_gamma;
+  const double up0 = prm.up[0], up1 = prm.up[1], up2 = prm.up[D - 1], rho0 = prm.eos.rho0;
   auto pair = [=](const PairGeometry& g, const Neighbour<C::count>& nb) {
     const double rho_j = nb[C::rho], vol_j = nb[C::vol], m_j = nb[C::mass];
     const double ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
@@ -203,7 +205,7 @@ template <int D, ViscosityModel VM>
 ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
                               const CellGrid<D>& grid, const LevelColumns<D>& cols,
                               const Vec<D>* extra, bool br) {
-  switch (prm.diffusion) {
+  switch (prm.density_diffusion.model) {
     case DiffusionModel::none:
       return force_pass<D, VM, DiffusionModel::none>(prm, ps, grid, cols, extra, br);
     case DiffusionModel::molteni:
@@ -222,7 +224,7 @@ ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const Vec<D>* extra_acc, bool buffer_reaction) {
   ps.acc.resize(ps.size());
   ps.drho.resize(ps.size());
-  if (prm.viscosity == ViscosityModel::laminar) {
+  if (prm.viscosity.model == ViscosityModel::laminar) {
     return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, cols, extra_acc,
                                                           buffer_reaction);
   }

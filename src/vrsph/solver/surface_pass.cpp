@@ -128,7 +128,8 @@ void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
     const double lambda_i = sf.lambda[i];
-    const double lambda_ref = lambda_i >= prm.lambda_threshold ? lambda_i : 0.0;  // difference form
+    const double lambda_ref =
+        lambda_i >= prm.surface_tension.lambda_threshold ? lambda_i : 0.0;  // difference form
     double xi[3] = {0, 0, 0};
     position_of(cols, i, xi);
     blk.gather(src, pad, grid, grid.particle_cells()[i], Groups::fluid);
@@ -144,7 +145,7 @@ void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const
     Vec<D> sum;
     for (int d = 0; d < D; ++d) sum[d] = s[d];
     sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i,
-                                                  prm.normal_epsilon, prm.h);
+                                                  prm.surface_tension.normal_epsilon, prm.h);
   };
   exec::for_each_with<Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
@@ -201,10 +202,11 @@ void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& p
     position_of(cols, i, xi);
     blk.gather(src, pad, grid, grid.particle_cells()[i], Groups::fluid);
     const CurvatureSums sums = curvature_particle<D>(prm, blk, xi, n_i, sf.l_corr[i]);
-    const double kappa = prm.curvature_correction ? corrected_curvature<D>(sums) : sums.kappa;
+    const SurfaceTensionParams& st = prm.surface_tension;
+    const double kappa = st.curvature_correction ? corrected_curvature<D>(sums) : sums.kappa;
     sf.curvature[i] = kappa;
     const double delta = surface_delta(norm(sf.grad_c[i]), sf.shepard[i]);
-    const double k_force = prm.surface_offset ? curvature_at_surface<D>(kappa, prm.dp) : kappa;
+    const double k_force = st.surface_offset ? curvature_at_surface<D>(kappa, prm.dp) : kappa;
     sf.acc_st[i] = csf_acceleration<D>(prm.sigma, k_force, n_i, delta, ps.rho[i]);
   };
   exec::for_each_with<Block>(n, kChunk, body);
