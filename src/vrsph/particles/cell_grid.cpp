@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "vrsph/exec/parallel.hpp"
+
 namespace vrsph {
 
 template <int D>
@@ -25,29 +27,35 @@ CellGrid<D>::CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double
   }
 }
 
+namespace {
+// The occupied cell range, merged over threads: minima and maxima, the same for any thread count.
+struct CellBounds {
+  static constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  static constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+  std::array<std::int64_t, 3> lo{kMax, kMax, kMax};
+  std::array<std::int64_t, 3> hi{kMin, kMin, kMin};
+  void merge(const CellBounds& o) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], o.lo[k]), hi[k] = std::max(hi[k], o.hi[k]);
+  }
+};
+struct NoScratch {};
+}  // namespace
+
 // Lays the cell table over the cells the particles occupy now (plus `reach` ghost cells), so
 // the table, and the cost of clearing and scanning it, follows the particles, not the domain.
 template <int D>
 void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
-  std::array<std::int64_t, 3> lo{0, 0, 0}, hi{0, 0, 0};
-  for (int k = 0; k < D; ++k) {
-    lo[k] = std::numeric_limits<std::int64_t>::max();
-    hi[k] = std::numeric_limits<std::int64_t>::min();
-  }
-  std::int64_t lo0 = lo[0], lo1 = lo[1], lo2 = lo[2], hi0 = hi[0], hi1 = hi[1], hi2 = hi[2];
-  const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static) reduction(min : lo0, lo1, lo2) reduction(max : hi0, hi1, hi2)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto& x = ps.pos[i];
-    if (!inside(x)) continue;
-    std::array<std::int64_t, 3> c{0, 0, 0};
-    for (int k = 0; k < D; ++k) c[k] = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_);
-    lo0 = std::min(lo0, c[0]), hi0 = std::max(hi0, c[0]);
-    lo1 = std::min(lo1, c[1]), hi1 = std::max(hi1, c[1]);
-    lo2 = std::min(lo2, c[2]), hi2 = std::max(hi2, c[2]);
-  }
-  lo = {lo0, lo1, lo2};
-  hi = {hi0, hi1, hi2};
+  const CellBounds b = exec::for_each_gather<NoScratch, CellBounds>(
+      static_cast<std::int64_t>(ps.size()), 4096, [&](std::int64_t i, NoScratch&, CellBounds& acc) {
+        const auto& x = ps.pos[i];
+        if (!inside(x)) return;
+        for (int k = 0; k < D; ++k) {
+          const auto c = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_);
+          acc.lo[k] = std::min(acc.lo[k], c), acc.hi[k] = std::max(acc.hi[k], c);
+        }
+      });
+  std::array<std::int64_t, 3> lo{0, 0, 0}, hi{0, 0, 0};  // axes beyond D stay at 0
+  for (int k = 0; k < D; ++k) lo[k] = b.lo[k], hi[k] = b.hi[k];
   ncell_total_ = 1;
   for (int k = 0; k < D; ++k) {
     if (hi[k] < lo[k]) lo[k] = hi[k] = 0;  // no particle inside
@@ -93,14 +101,12 @@ bool CellGrid<D>::stencil_cell(const Vec<D>& x, std::int64_t& c) const {
 }
 
 namespace {
-// Gathers a through perm into scratch. Called inside a parallel region: the loop is shared
-// among the threads, and the caller swaps a and scratch after the region's barrier.
+// Gathers a through perm into scratch (the caller swaps them afterwards).
 template <class T>
 void permute_into(const std::vector<T>& a, const std::vector<std::uint32_t>& perm,
                   std::vector<T>& scratch) {
-  const auto n = static_cast<std::int64_t>(perm.size());
-#pragma omp for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) scratch[i] = a[perm[i]];
+  exec::for_each(static_cast<std::int64_t>(perm.size()),
+                 [&](std::int64_t i) { scratch[i] = a[perm[i]]; });
 }
 }  // namespace
 
@@ -115,11 +121,9 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   std::vector<std::uint64_t> lost;
   pcell_.resize(n);
   fit_to(ps);
-  const auto ni = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < ni; ++i) {
+  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
     pcell_[i] = inside(ps.pos[i]) ? static_cast<std::int64_t>(key(cell_of(ps.pos[i]), ps.kind[i])) : -1;
-  }
+  });
   std::size_t kept = 0;
   for (std::size_t i = 0; i < n; ++i) {  // histogram (serial: cheap, and no atomics)
     if (pcell_[i] < 0) {
@@ -137,22 +141,18 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
     if (pcell_[i] < 0) continue;
     perm_[--begin_[static_cast<std::size_t>(pcell_[i])]] = static_cast<std::uint32_t>(i);
   }
-  // One parallel region gathers every carried array of the field list through the
-  // permutation into its twin in scratch_; after the swap scratch_ holds the previous storage,
-  // so nothing is allocated once the sizes have settled. Every thread walks the same list, so
-  // the work-shared loops line up.
+  // Every carried array of the field list is gathered through the permutation into its twin in
+  // scratch_; after the swap scratch_ holds the previous storage, so nothing is allocated once
+  // the sizes have settled.
   using PS = ParticleSet<D>;
   PS::zip_fields([kept](std::string_view, FieldRole role, auto&, auto& s) {
     if (carried(role)) s.resize(kept);
   }, ps, scratch_);
   cell_scratch_.resize(kept);
-#pragma omp parallel
-  {
-    PS::zip_fields([this](std::string_view, FieldRole role, const auto& a, auto& s) {
-      if (carried(role)) permute_into(a, perm_, s);
-    }, ps, scratch_);
-    permute_into(pcell_, perm_, cell_scratch_);
-  }
+  PS::zip_fields([this](std::string_view, FieldRole role, const auto& a, auto& s) {
+    if (carried(role)) permute_into(a, perm_, s);
+  }, ps, scratch_);
+  permute_into(pcell_, perm_, cell_scratch_);
   // Derived fields (p, acc, drho) are recomputed after every sort: only resized.
   PS::zip_fields([kept](std::string_view, FieldRole role, auto& a, auto& s) {
     if (carried(role)) a.swap(s);
@@ -161,9 +161,8 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   pcell_.swap(cell_scratch_);
   // pcell_ held sort keys; particle_cells() gives cells, without the wall group's offset.
   const auto wall_begin = static_cast<std::int64_t>(group_begin(Group::wall));
-  const auto n_kept = static_cast<std::int64_t>(kept);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = wall_begin; i < n_kept; ++i) pcell_[i] -= ncell_total_;
+  const auto n_walls = static_cast<std::int64_t>(kept) - wall_begin;
+  exec::for_each(n_walls, [&](std::int64_t i) { pcell_[wall_begin + i] -= ncell_total_; });
   return lost;
 }
 
