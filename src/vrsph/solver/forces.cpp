@@ -112,7 +112,7 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceB
     s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
     return s;
   };
-  sweep_pairs<D, C::count>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair,
+  sweep_pairs<D, C::count, 5, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair,
                            out.s, out.max_visc_dt);
 }
 
@@ -134,7 +134,7 @@ inline void wall_sweep(const SolverParams<D>& prm, const Self& me, const ForceBl
     s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
     return s;
   };
-  sweep_pairs<D, C::count>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair,
+  sweep_pairs<D, C::count, 5, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair,
                            out.s, out.max_visc_dt);
 }
 

@@ -65,7 +65,7 @@ void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk
     return s;
   };
   double unused = -1e300;
-  sweep_pairs<D, D + 1>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum,
+  sweep_pairs<D, D + 1, 11, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum,
                         unused);
 }
 
@@ -140,7 +140,7 @@ void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const
       a.s0 = c * g.rx, a.s1 = c * g.ry, a.s2 = c * g.rz;
       return a;
     };
-    sweep_pairs<D, D + 2>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s,
+    sweep_pairs<D, D + 2, 3, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s,
                           unused);
     Vec<D> sum;
     for (int d = 0; d < D; ++d) sum[d] = s[d];
@@ -170,7 +170,7 @@ CurvatureSums curvature_particle(const SolverParams<D>& prm, const CandidateBloc
     return s;
   };
   double s[12] = {}, unused = -1e300;
-  sweep_pairs<D, 2 * D + 1>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s,
+  sweep_pairs<D, 2 * D + 1, 3, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s,
                             unused);
   return CurvatureSums{s[0], s[1], s[2]};
 }
