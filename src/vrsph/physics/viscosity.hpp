@@ -48,7 +48,8 @@ inline double artificial_viscosity_pair(double m_j, double alpha_c0_h, double vi
                                         double rho_i, double rho_j, double r2, double eta2) {
   const double mu = vij_dot_rij / (r2 + eta2);
   const double pi_ij = -alpha_c0_h * mu / (0.5 * (rho_i + rho_j));
-  return vij_dot_rij < 0.0 ? -m_j * pi_ij : 0.0;
+  const double approaching = vij_dot_rij < 0.0 ? 1.0 : 0.0;  // a factor, not a branch
+  return approaching * (-m_j * pi_ij);
 }
 
 inline double viscous_dt_measure(double vij_dot_rij, double inv_r2eta) {
