@@ -5,8 +5,8 @@
 #include <benchmark/benchmark.h>
 
 #include "vrsph/setup/case_parser.hpp"
-#include "vrsph/solver/forces.hpp"
 #include "vrsph/sim/simulation.hpp"
+#include "vrsph/solver/forces.hpp"
 
 namespace {
 
@@ -14,8 +14,9 @@ using namespace vrsph;
 
 Simulation<2>& bench_simulation() {
   static CaseSpec spec = [] {
-    return parse_case(load_case_table(std::string(VRSPH_SOURCE_DIR) + "/cases/bench_dam_break_2d.toml"),
-                      "bench_dam_break_2d.toml");
+    return parse_case(
+        load_case_table(std::string(VRSPH_SOURCE_DIR) + "/cases/bench_dam_break_2d.toml"),
+        "bench_dam_break_2d.toml");
   }();
   static Simulation<2> sim(spec);
   return sim;
@@ -27,9 +28,10 @@ void Forces(benchmark::State& state) {
   ForceWorkspace<2> ws;
   std::uint64_t pairs = 0;
   for (auto _ : state) pairs += compute_forces(sim.params(), ps, sim.grid(), ws).pairs;
-  state.counters["particles/s"] =
-      benchmark::Counter(static_cast<double>(ps.size()), benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["pairs/s"] = benchmark::Counter(static_cast<double>(pairs), benchmark::Counter::kIsRate);
+  state.counters["particles/s"] = benchmark::Counter(static_cast<double>(ps.size()),
+                                                     benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["pairs/s"] =
+      benchmark::Counter(static_cast<double>(pairs), benchmark::Counter::kIsRate);
 }
 BENCHMARK(Forces)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -38,8 +40,8 @@ void Sort(benchmark::State& state) {
   ParticleSet<2> ps = sim.particles();
   CellGrid<2> grid = sim.grid();
   for (auto _ : state) grid.sort(ps);
-  state.counters["particles/s"] =
-      benchmark::Counter(static_cast<double>(ps.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["particles/s"] = benchmark::Counter(static_cast<double>(ps.size()),
+                                                     benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(Sort)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -35,7 +35,8 @@ LaplaceError run_droplet(std::vector<std::string> sets) {
   Simulation<2> sim(spec);
   run_to_end(sim, spec.end_time);
   const OutputLine& line = spec.lines.front();
-  const LaplaceError e = line_laplace_error<2>(sim.particles(), line, 36.4, sim.params().h, spec.dp);
+  const LaplaceError e =
+      line_laplace_error<2>(sim.particles(), line, 36.4, sim.params().h, spec.dp);
   std::printf("droplet_2d dp 5e-5 t 0.2: mean %.3f Pa, RMSE %.4f Pa (NRMSE %.5f), RMSE all %.4f\n",
               e.mean_interior, e.rmse, e.nrmse, e.rmse_all);
   return e;
@@ -91,8 +92,9 @@ TEST(SlowDroplet, RingsWithOffsetAndCurvatureCorrectionReachTheGoal) {
 // curvature_correction: mean pressure within R/2 against 2 sigma / R = 72.8 Pa. Measured 72.84 Pa
 // (+0.05%; the Cen model alone: 81.8 Pa, +12%), about 300 s on one thread.
 TEST(SlowDroplet, SphereWithOffsetAndCurvatureCorrection) {
-  CaseSpec spec = load_case("droplet_3d.toml", {"numerics.surface_tension.surface_offset=true",
-                                                "numerics.surface_tension.curvature_correction=true"});
+  CaseSpec spec =
+      load_case("droplet_3d.toml", {"numerics.surface_tension.surface_offset=true",
+                                    "numerics.surface_tension.curvature_correction=true"});
   Simulation<3> sim(spec);
   run_to_end(sim, spec.end_time);
   const auto& ps = sim.particles();
@@ -137,7 +139,8 @@ WindowError vr_window_error(const char* case_file, double expected) {
 // window mean of the RMSE against the poster's VR figure, 0.7708 Pa. The drop keeps a shape
 // oscillation (mode n = 2, period 27 ms) stirred where the surface crosses the interface, so the
 // RMSE at one instant is a draw from a wide distribution (0.10-0.77 Pa over the window). The CLI
-// run measured a window mean of 0.348 Pa (1.48 Pa with vres_buffer_fill_min = 0; docs/validation.md).
+// run measured a window mean of 0.348 Pa (1.48 Pa with vres_buffer_fill_min = 0;
+// docs/validation.md).
 TEST(SlowDroplet, VariableResolutionBeatsThePosterRmse) {
   const WindowError w = vr_window_error("droplet_vr_2d.toml", 36.4);
   EXPECT_NEAR(w.mean_interior, 36.4, 0.03 * 36.4);

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "vrsph/analysis/front.hpp"
 #include "case_util.hpp"
+#include "vrsph/analysis/front.hpp"
 #include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {

@@ -266,9 +266,9 @@ TEST(CaseParser, ZeroNetSurfaceForceOnlyWithoutWalls) {
   const CaseSpec s = parse_text(drop);
   EXPECT_TRUE(s.numerics.surface_tension.zero_net_force);
   EXPECT_EQ(reparse(case_to_toml(s)), s);
-  expect_contains(error_of(drop + "[[wall_block]]\nshape = \"box\"\nmin = [0, 0]\nmax = [1, 1]\n"),
-                  {"numerics.surface_tension.zero_net_force", "true with walls",
-                   "closed free surface"});
+  expect_contains(
+      error_of(drop + "[[wall_block]]\nshape = \"box\"\nmin = [0, 0]\nmax = [1, 1]\n"),
+      {"numerics.surface_tension.zero_net_force", "true with walls", "closed free surface"});
 }
 
 TEST(CaseParser, RoundTripMinimalAnd3D) {

@@ -98,8 +98,8 @@ template <int D>
 std::map<std::uint64_t, Record<D>> records(const ParticleSet<D>& ps) {
   std::map<std::uint64_t, Record<D>> m;
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    m[ps.id[i]] = {ps.kind[i], ps.pos[i],  ps.vel[i],  ps.pos0[i], ps.vel0[i], ps.shift[i],
-                   ps.rho[i],  ps.mass[i], ps.rho0[i], i};
+    m[ps.id[i]] = {ps.kind[i],  ps.pos[i], ps.vel[i],  ps.pos0[i], ps.vel0[i],
+                   ps.shift[i], ps.rho[i], ps.mass[i], ps.rho0[i], i};
   }
   return m;
 }
@@ -399,7 +399,8 @@ TEST(CellGridGeometry, CircleFillsHaveTheCircleArea) {
 }
 
 // Longest run of neighbouring rings k, k+1, ... that each have a particle on one common ray
-// (each within 0.1 dp of arc of the previous ring's particle), for a ring fill centred at the origin.
+// (each within 0.1 dp of arc of the previous ring's particle), for a ring fill centred at the
+// origin.
 std::size_t longest_radial_chain(const std::vector<Vec<2>>& pos, double dp) {
   std::vector<std::vector<double>> ring;  // sorted angles per ring index
   for (const auto& x : pos) {
@@ -445,7 +446,8 @@ TEST(CellGridGeometry, RingFillHasNoRadialSeam) {
   s.fluid_blocks = {f};
   const ParticleSet<2> ps = build_particles<2>(s).particles;
   const std::size_t chain = longest_radial_chain(ps.pos, dp);
-  std::printf("[ geometry ] rings at R/dp = 100: longest radially aligned chain %zu rings\n", chain);
+  std::printf("[ geometry ] rings at R/dp = 100: longest radially aligned chain %zu rings\n",
+              chain);
   EXPECT_LE(chain, 6u);
   // The check itself sees a seam: a fill with every ring started at theta = 0.
   std::vector<Vec<2>> seam;

@@ -513,10 +513,10 @@ to = [1.0, 0.05]
 TEST(CliRun, SeriesFollowsTheLaplaceError) {
   TempDir dir;
   const fs::path out = dir / "run";
-  const CmdResult r = dir.run({"run", (kCases / "droplet_2d.toml").string(), "--out", out.string(),
-                               "--quiet", "--threads", "1", "--set", "resolution.dp=2e-4", "--set",
-                               "case.end_time=0.004", "--set", "output.interval=0.002", "--set",
-                               "output.formats=[\"csv\"]"});
+  const CmdResult r =
+      dir.run({"run", (kCases / "droplet_2d.toml").string(), "--out", out.string(), "--quiet",
+               "--threads", "1", "--set", "resolution.dp=2e-4", "--set", "case.end_time=0.004",
+               "--set", "output.interval=0.002", "--set", "output.formats=[\"csv\"]"});
   ASSERT_EQ(r.status, 0) << r;
   const auto series = read_lines(out / "series.csv");
   ASSERT_EQ(series.size(), 4u);
@@ -641,10 +641,19 @@ TEST(CliThreads, OneAndTwoThreadsGiveIdenticalFiles) {
 TEST(CliThreads, VariableResolutionIndependentOfThreadCount) {
   TempDir dir;
   auto args = [&](const fs::path& out, int threads) {
-    return std::vector<std::string>{"run", (kCases / "droplet_vr_2d.toml").string(), "--out",
-                                    out.string(), "--quiet", "--threads", std::to_string(threads),
-                                    "--set", "resolution.dp=2e-4", "--set", "case.end_time=0.003",
-                                    "--set", "output.interval=0.0015"};
+    return std::vector<std::string>{"run",
+                                    (kCases / "droplet_vr_2d.toml").string(),
+                                    "--out",
+                                    out.string(),
+                                    "--quiet",
+                                    "--threads",
+                                    std::to_string(threads),
+                                    "--set",
+                                    "resolution.dp=2e-4",
+                                    "--set",
+                                    "case.end_time=0.003",
+                                    "--set",
+                                    "output.interval=0.0015"};
   };
   const fs::path a = dir / "t1", b = dir / "t2";
   ASSERT_EQ(dir.run(args(a, 1)).status, 0);

@@ -88,9 +88,10 @@ std::map<FieldRole, int> expect_fields(const ParticleSet<D>& ps, Want want, cons
     if (want(role)) {
       ++checked[role];
       std::size_t bad = 0;
-      for (std::size_t i = 0; i < ps.size(); ++i) bad += !(v[i] == value_of<T>(ps.id[i], field, name));
-      EXPECT_EQ(bad, 0u) << what << ": field '" << name << "' lost its values for " << bad
-                         << " of " << ps.size() << " particles";
+      for (std::size_t i = 0; i < ps.size(); ++i)
+        bad += !(v[i] == value_of<T>(ps.id[i], field, name));
+      EXPECT_EQ(bad, 0u) << what << ": field '" << name << "' lost its values for " << bad << " of "
+                         << ps.size() << " particles";
     }
     ++field;
   });
@@ -158,9 +159,8 @@ TYPED_TEST(FieldListTest, EveryPersistentFieldSurvivesACheckpoint) {
   const ParticleSet<D> ps = filled_set<D>(400, 9);
   Checkpoint ck;
   ck.put_particles<D>(3, ps);
-  const std::vector<std::string> names = {"level3.id",   "level3.kind", "level3.mass",
-                                          "level3.pos",  "level3.rho",  "level3.shift",
-                                          "level3.vel"};
+  const std::vector<std::string> names = {"level3.id",  "level3.kind",  "level3.mass", "level3.pos",
+                                          "level3.rho", "level3.shift", "level3.vel"};
   EXPECT_EQ(ck.names(), names);  // record names are part of the file format
   const std::filesystem::path path = std::filesystem::temp_directory_path() /
                                      ("vrsph_fields_" + std::to_string(::getpid()) + ".bin");

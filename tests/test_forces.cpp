@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "vrsph/particles/cell_grid.hpp"
+#include "vrsph/sim/simulation.hpp"
 #include "vrsph/solver/forces.hpp"
 #include "vrsph/solver/params.hpp"
-#include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
 namespace {
@@ -34,7 +34,8 @@ SolverParams<D> make_params(double dp, ViscosityModel vm, DiffusionModel dm) {
   prm.eos = TaitEos(kRho0, 7.0, c0);
   prm.mass = kRho0 * std::pow(dp, D);
   prm.viscosity.model = vm;
-  prm.viscosity.nu = vm == ViscosityModel::laminar ? 1e-3 : 0.0;  // large, so the term is not negligible
+  prm.viscosity.nu =
+      vm == ViscosityModel::laminar ? 1e-3 : 0.0;  // large, so the term is not negligible
   prm.viscosity.alpha_c0_h = 0.1 * c0 * prm.h;
   prm.density_diffusion.model = dm;
   prm.density_diffusion.two_delta_h_c0 = 2.0 * 0.1 * prm.h * c0;

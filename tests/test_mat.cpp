@@ -93,8 +93,7 @@ Eigen::Matrix<double, D, D> random_symmetric(int kind, std::mt19937_64& rng) {
 }
 
 const char* kind_name(int kind) {
-  static const char* names[] = {"generic", "nearly diagonal", "repeated", "badly scaled",
-                                "graded"};
+  static const char* names[] = {"generic", "nearly diagonal", "repeated", "badly scaled", "graded"};
   return names[kind];
 }
 
@@ -117,8 +116,8 @@ TEST(MatEigen, JacobiMinEigenvalueMatchesEigen3D) {
       const double got_min = min_eigenvalue<3>(m);
       const double err = std::abs(got_min - ref_min) / scale;
       worst_kind = std::max(worst_kind, err);
-      EXPECT_LT(err, 1e-12) << kind_name(kind) << " #" << t << ": jacobi " << got_min
-                            << ", eigen " << ref_min << ", |M| " << scale;
+      EXPECT_LT(err, 1e-12) << kind_name(kind) << " #" << t << ": jacobi " << got_min << ", eigen "
+                            << ref_min << ", |M| " << scale;
       // All three eigenvalues (sorted) agree as well.
       std::array<double, 3> all = eigenvalues_sym3_jacobi(m);
       std::sort(all.begin(), all.end());
@@ -172,8 +171,8 @@ TEST(MatEigen, ClosedForm2DMatchesEigen) {
       const double got = min_eigenvalue<2>(m);
       const double err = std::abs(got - ref) / scale;
       worst = std::max(worst, err);
-      EXPECT_LT(err, 1e-12) << kind_name(kind) << " #" << t << ": closed form " << got
-                            << ", eigen " << ref;
+      EXPECT_LT(err, 1e-12) << kind_name(kind) << " #" << t << ": closed form " << got << ", eigen "
+                            << ref;
       EXPECT_NEAR(min_eigenvalue_sym2(e(0, 0), e(0, 1), e(1, 1)), ref, 1e-12 * scale);
     }
   }

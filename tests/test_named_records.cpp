@@ -89,14 +89,26 @@ TEST(NamedRecords, RunStateRoundTripsMemberByMember) {
   EXPECT_EQ(c.deleted_mass, 1012.75);
   EXPECT_EQ(c.next_id, 1013u);
   // One record per value, under names that are part of the file format.
-  const std::vector<std::string> names = {
-      "counters.created",         "counters.created_mass",       "counters.deleted",
-      "counters.deleted_mass",    "counters.dt_limit.acoustic",  "counters.dt_limit.capillary",
-      "counters.dt_limit.force",  "counters.dt_limit.viscous",   "counters.lost_fluid",
-      "counters.next_id",         "counters.pairs",              "counters.particle_steps",
-      "counters.wall_seconds",    "dt_last",                     "dt_next",
-      "initial_fluid",            "levels",                      "output_index",
-      "step",                     "time"};
+  const std::vector<std::string> names = {"counters.created",
+                                          "counters.created_mass",
+                                          "counters.deleted",
+                                          "counters.deleted_mass",
+                                          "counters.dt_limit.acoustic",
+                                          "counters.dt_limit.capillary",
+                                          "counters.dt_limit.force",
+                                          "counters.dt_limit.viscous",
+                                          "counters.lost_fluid",
+                                          "counters.next_id",
+                                          "counters.pairs",
+                                          "counters.particle_steps",
+                                          "counters.wall_seconds",
+                                          "dt_last",
+                                          "dt_next",
+                                          "initial_fluid",
+                                          "levels",
+                                          "output_index",
+                                          "step",
+                                          "time"};
   EXPECT_EQ(back.names(), names);
 }
 
@@ -175,13 +187,19 @@ TEST(NamedRecords, SeriesColumnsShowTheirMembersByName) {
   std::map<std::string, std::string> by_name;
   for (std::size_t k = 0; k < names.size(); ++k) by_name[names[k]] = values[k];
   EXPECT_EQ(by_name.size(), kSeriesColumns.size() + 2);
-  const std::map<std::string, std::string> expected = {
-      {"t", "0.5"},          {"step", "12"},          {"dt", "0.25"},
-      {"n_fluid", "34"},     {"n_buffer", "56"},      {"mass_fluid", "7.5"},
-      {"kinetic_energy", "8.5"}, {"max_speed", "9.5"}, {"extra_a", "10.5"},
-      {"extra_b", "11.5"}};
+  const std::map<std::string, std::string> expected = {{"t", "0.5"},
+                                                       {"step", "12"},
+                                                       {"dt", "0.25"},
+                                                       {"n_fluid", "34"},
+                                                       {"n_buffer", "56"},
+                                                       {"mass_fluid", "7.5"},
+                                                       {"kinetic_energy", "8.5"},
+                                                       {"max_speed", "9.5"},
+                                                       {"extra_a", "10.5"},
+                                                       {"extra_b", "11.5"}};
   EXPECT_EQ(by_name, expected);
-  EXPECT_EQ(header, "t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed,extra_a,extra_b");
+  EXPECT_EQ(header,
+            "t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed,extra_a,extra_b");
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "vrsph/analysis/front.hpp"
 #include "case_util.hpp"
+#include "vrsph/analysis/front.hpp"
 #include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
@@ -44,8 +44,9 @@ TEST(PhysicsHydrostatic, PressureFollowsRhoGDepth) {
   const double rms_rel = std::sqrt(sum2 / n) / (rho_g * surface);
   const double slope = -(n * syp - sy * sp) / (n * syy - sy * sy);
   RecordProperty("rms_rel", std::to_string(rms_rel));
-  std::printf("hydrostatic: RMS(p - rho g depth) / (rho g H) = %.4f, dp/dz = %.1f Pa/m (rho g = %.1f)\n",
-              rms_rel, slope, rho_g);
+  std::printf(
+      "hydrostatic: RMS(p - rho g depth) / (rho g H) = %.4f, dp/dz = %.1f Pa/m (rho g = %.1f)\n",
+      rms_rel, slope, rho_g);
   EXPECT_LT(rms_rel, 0.02);
   EXPECT_NEAR(slope / rho_g, 1.0, 0.03);
 }
@@ -62,7 +63,8 @@ TEST(PhysicsDamBreak, FrontFollowsExperiment) {
   std::vector<FrontPoint> history{{0.0, surge_front(sim.particles()) / a}};
   while (sim.time() < spec.end_time - 1e-12) {
     sim.step();
-    if (sim.step_count() % 20 == 0) history.push_back({sim.time() * t_scale, surge_front(sim.particles()) / a});
+    if (sim.step_count() % 20 == 0)
+      history.push_back({sim.time() * t_scale, surge_front(sim.particles()) / a});
   }
   const std::string ref = std::string(VRSPH_REFERENCE_DIR) + "/dam_break_front.csv";
   for (const std::string src : {"martin_moyce_1952", "koshizuka_oka_1996"}) {
@@ -102,7 +104,8 @@ namespace {
 
 // fluid_block.N.pressure starts the block at that pressure (its density from the EOS).
 TEST(PhysicsSetup, BlockInitialPressureSetsDensity) {
-  CaseSpec spec = load_case("droplet_2d.toml", {"resolution.dp=2e-4", "fluid_block.0.pressure=36.4"});
+  CaseSpec spec =
+      load_case("droplet_2d.toml", {"resolution.dp=2e-4", "fluid_block.0.pressure=36.4"});
   Simulation<2> sim(spec);
   sim.update_pressure();
   const auto& ps = sim.particles();

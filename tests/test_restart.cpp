@@ -5,8 +5,8 @@
 // compared byte for byte with an uninterrupted run.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <utility>
@@ -300,8 +300,8 @@ TEST(Restart, CheckpointOfAnOlderFormatIsRefused) {
   checkpoint.replace(8, 4, reinterpret_cast<const char*>(&old_version), 4);
   write_text(a / "checkpoint.bin", checkpoint);
   const std::string series_before = read_text(a / "series.csv");
-  const CmdResult r = dir.run({"run", "--resume", a.string(), "--quiet", "--threads", "1", "--set",
-                               "case.end_time=0.01"});
+  const CmdResult r = dir.run(
+      {"run", "--resume", a.string(), "--quiet", "--threads", "1", "--set", "case.end_time=0.01"});
   EXPECT_NE(r.status, 0) << r;
   const auto lines = r.err_lines();
   ASSERT_EQ(lines.size(), 1u) << r;
@@ -348,9 +348,18 @@ TEST(Restart, HaltedVariableResolutionRunResumesToTheSameBytes) {
   TempDir dir;
   const fs::path a = dir / "a", b = dir / "b";
   auto args = [&](const fs::path& out) {
-    return std::vector<std::string>{"run", (kCases / "droplet_vr_2d.toml").string(), "--out",
-                                    out.string(), "--quiet", "--threads", "1", "--set",
-                                    "resolution.dp=2e-4", "--set", "case.end_time=0.006", "--set",
+    return std::vector<std::string>{"run",
+                                    (kCases / "droplet_vr_2d.toml").string(),
+                                    "--out",
+                                    out.string(),
+                                    "--quiet",
+                                    "--threads",
+                                    "1",
+                                    "--set",
+                                    "resolution.dp=2e-4",
+                                    "--set",
+                                    "case.end_time=0.006",
+                                    "--set",
                                     "output.interval=0.0015"};
   };
   const CmdResult ra = dir.run(args(a));

@@ -17,8 +17,8 @@
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/physics/shifting.hpp"
-#include "vrsph/solver/params.hpp"
 #include "vrsph/sim/simulation.hpp"
+#include "vrsph/solver/params.hpp"
 #include "vrsph/solver/surface_pass.hpp"
 
 namespace vrsph {
@@ -96,9 +96,10 @@ void check_lattice_interior(int n) {
       edge_dr = std::max(edge_dr, norm(dr_l) / dp);
     }
   }
-  std::printf("[ shifting %dD ] lattice interior (%zu): max |grad C| h = %.1e, max |dr| / dp = "
-              "%.1e, div r %.4f..%.4f; second row max |dr_lind| / dp = %.3f\n",
-              D, inner, worst_gc, worst_dr, div_min, div_max, edge_dr);
+  std::printf(
+      "[ shifting %dD ] lattice interior (%zu): max |grad C| h = %.1e, max |dr| / dp = "
+      "%.1e, div r %.4f..%.4f; second row max |dr_lind| / dp = %.3f\n",
+      D, inner, worst_gc, worst_dr, div_min, div_max, edge_dr);
   ASSERT_GT(inner, 8u);
   EXPECT_LT(worst_gc, 1e-10);
   EXPECT_LT(worst_dr, 1e-10);
@@ -126,8 +127,8 @@ TEST(ShiftingDisplacement, ClampsEachComponentAtTenthOfDp) {
     const Vec<2> mixed{{1.0e9, 1.0}};
     const Vec<2> dm = shifting_displacement<2>(s, mixed, 2.0, 1.0, 1e-5);
     EXPECT_DOUBLE_EQ(dm[0], -0.1 * dp);
-    const double scale = model == ShiftingModel::lind ? s.coefficient * s.h * s.h
-                                                      : s.coefficient * s.h * 1.0 * 1e-5;
+    const double scale =
+        model == ShiftingModel::lind ? s.coefficient * s.h * s.h : s.coefficient * s.h * 1.0 * 1e-5;
     EXPECT_NEAR(dm[1], -scale * 1.0, 1e-12 * scale);
     // 3D as well.
     const ShiftingLevel s3 = shifting_params<3>(model, dp);
@@ -231,10 +232,11 @@ void run_droplet(const std::vector<std::string>& extra, const char* label, Shift
     finite = finite && std::isfinite(norm2(ps.pos[i])) && std::isfinite(norm2(ps.vel[i])) &&
              std::isfinite(ps.rho[i]);
   }
-  std::printf("[ shifting %s ] droplet dp=1e-4 to t = %.3g s (%lld steps): max speed %.4f m/s, "
-              "max shift %.3g dp, %zu of %zu fluid particles\n",
-              label, sim.time(), static_cast<long long>(sim.step_count()), vmax,
-              shift_max / 1e-4, ps.count(Kind::fluid), sim.initial_fluid());
+  std::printf(
+      "[ shifting %s ] droplet dp=1e-4 to t = %.3g s (%lld steps): max speed %.4f m/s, "
+      "max shift %.3g dp, %zu of %zu fluid particles\n",
+      label, sim.time(), static_cast<long long>(sim.step_count()), vmax, shift_max / 1e-4,
+      ps.count(Kind::fluid), sim.initial_fluid());
   EXPECT_TRUE(finite) << label;
   EXPECT_NEAR(sim.time(), 0.002, 1e-12) << label;
   EXPECT_LT(vmax, 0.2) << label;

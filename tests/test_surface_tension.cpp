@@ -19,13 +19,13 @@
 #include <vector>
 
 #include "case_util.hpp"
-#include "vrsph/physics/surface_tension.hpp"
 #include "vrsph/core/kernel.hpp"
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
+#include "vrsph/physics/surface_tension.hpp"
 #include "vrsph/setup/geometry.hpp"
-#include "vrsph/solver/params.hpp"
 #include "vrsph/sim/simulation.hpp"
+#include "vrsph/solver/params.hpp"
 #include "vrsph/solver/surface_pass.hpp"
 
 namespace vrsph {
@@ -183,9 +183,10 @@ void check_lambda_block(int n, double bulk_lo, double bulk_hi, double face_lo, d
       f2max = std::max(f2max, lam);
     }
   }
-  std::printf("[ surface %dD ] lambda: bulk %.4f..%.4f (%zu), outer face row %.4f..%.4f (%zu), "
-              "second row %.4f..%.4f\n",
-              D, bmin, bmax, nb, fmin, fmax, nf, f2min, f2max);
+  std::printf(
+      "[ surface %dD ] lambda: bulk %.4f..%.4f (%zu), outer face row %.4f..%.4f (%zu), "
+      "second row %.4f..%.4f\n",
+      D, bmin, bmax, nb, fmin, fmax, nf, f2min, f2max);
   ASSERT_GT(nb, 8u);
   ASSERT_GT(nf, 8u);
   EXPECT_GT(bmin, bulk_lo);
@@ -198,8 +199,12 @@ void check_lambda_block(int n, double bulk_lo, double bulk_hi, double face_lo, d
   EXPECT_LT(f2max, bmin);
 }
 
-TEST(SurfaceTensionLambda, BulkAndFlatSurface2D) { check_lambda_block<2>(16, 0.972, 0.976, 0.48, 0.495); }
-TEST(SurfaceTensionLambda, BulkAndFlatSurface3D) { check_lambda_block<3>(10, 0.975, 0.983, 0.48, 0.51); }
+TEST(SurfaceTensionLambda, BulkAndFlatSurface2D) {
+  check_lambda_block<2>(16, 0.972, 0.976, 0.48, 0.495);
+}
+TEST(SurfaceTensionLambda, BulkAndFlatSurface3D) {
+  check_lambda_block<3>(10, 0.975, 0.983, 0.48, 0.51);
+}
 
 // An isolated particle has M = 0: lambda = 0 and L = I (not inverted).
 TEST(SurfaceTensionLambda, IsolatedParticle) {
@@ -261,11 +266,11 @@ LayerStats layer_curvature(const Static<D>& s, double r_lo, double r_hi) {
   return st;
 }
 
-// The outer ring sits at r = R - dp/2. Its neighbourhood is one-sided (inwards, where 1/r is larger),
-// so the corrected gradient of n = x/|x| carries a first-order bias: measured kappa ~ 1/(R - 1.03 dp),
-// i.e. kappa R = 1.055 (dp = 1e-4) and 1.026 (dp = 5e-5); against the ring's own radius 1.028 and
-// 1.014 (PHYSICS.md: "outer ring within 3%"). Checked: within 5% of 1/r_ring, within 6% / 3% of
-// 1/R, and the error halves with dp.
+// The outer ring sits at r = R - dp/2. Its neighbourhood is one-sided (inwards, where 1/r is
+// larger), so the corrected gradient of n = x/|x| carries a first-order bias: measured kappa ~ 1/(R
+// - 1.03 dp), i.e. kappa R = 1.055 (dp = 1e-4) and 1.026 (dp = 5e-5); against the ring's own
+// radius 1.028 and 1.014 (PHYSICS.md: "outer ring within 3%"). Checked: within 5% of 1/r_ring,
+// within 6% / 3% of 1/R, and the error halves with dp.
 TEST(SurfaceTensionCurvature, RadialNormalsOnRingsGiveOneOverR) {
   const double R = 0.002;
   double err_ring[2] = {0.0, 0.0};
@@ -276,10 +281,11 @@ TEST(SurfaceTensionCurvature, RadialNormalsOnRingsGiveOneOverR) {
     const LayerStats outer = layer_curvature(s, R - dp, R);
     const LayerStats second = layer_curvature(s, R - 2.0 * dp, R - dp);
     const double r_ring = R - 0.5 * dp;
-    std::printf("[ surface 2D rings dp=%g ] imposed radial normals: outer ring kappa R = %.4f "
-                "(%.4f..%.4f, %zu particles), kappa r_ring = %.4f; second ring kappa R = %.4f\n",
-                dp, outer.mean * R, outer.min * R, outer.max * R, outer.n, outer.mean * r_ring,
-                second.mean * R);
+    std::printf(
+        "[ surface 2D rings dp=%g ] imposed radial normals: outer ring kappa R = %.4f "
+        "(%.4f..%.4f, %zu particles), kappa r_ring = %.4f; second ring kappa R = %.4f\n",
+        dp, outer.mean * R, outer.min * R, outer.max * R, outer.n, outer.mean * r_ring,
+        second.mean * R);
     ASSERT_GT(outer.n, 100u);
     EXPECT_NEAR(outer.mean * r_ring, 1.0, 0.05) << "dp = " << dp;
     EXPECT_NEAR(outer.mean * R, 1.0, dp > 7e-5 ? 0.06 : 0.03) << "dp = " << dp;
@@ -300,9 +306,10 @@ TEST(SurfaceTensionCurvature, RadialNormalsOnSphereShellsGiveTwoOverR) {
   const double R = 0.002, dp = 1e-4;
   const Static<3> s = curvature_with_radial_normals<3>(sphere_shells(R, dp), R, dp);
   const LayerStats outer = layer_curvature(s, R - dp, R);
-  std::printf("[ surface 3D shells dp=%g ] imposed radial normals: outer shell kappa R / 2 = "
-              "%.4f (%.3f..%.3f, %zu particles)\n",
-              dp, 0.5 * outer.mean * R, 0.5 * outer.min * R, 0.5 * outer.max * R, outer.n);
+  std::printf(
+      "[ surface 3D shells dp=%g ] imposed radial normals: outer shell kappa R / 2 = "
+      "%.4f (%.3f..%.3f, %zu particles)\n",
+      dp, 0.5 * outer.mean * R, 0.5 * outer.min * R, 0.5 * outer.max * R, outer.n);
   std::printf("[ surface 3D shells dp=%g ] against the shell radius: kappa r_shell / 2 = %.4f\n",
               dp, 0.5 * outer.mean * (R - 0.5 * dp));
   ASSERT_GT(outer.n, 1000u);
@@ -315,9 +322,10 @@ TEST(SurfaceTensionCurvature, RadialNormalsOnSphereShellsGiveTwoOverR) {
   // the jagged surface spreads the per-particle values).
   const Static<3> l = curvature_with_radial_normals<3>(sphere_lattice(R, dp), R, dp);
   const LayerStats lo = layer_curvature(l, R - dp, R);
-  std::printf("[ surface 3D lattice sphere dp=%g ] imposed radial normals: outer shell "
-              "kappa R / 2 = %.4f (%.3f..%.3f, %zu particles)\n",
-              dp, 0.5 * lo.mean * R, 0.5 * lo.min * R, 0.5 * lo.max * R, lo.n);
+  std::printf(
+      "[ surface 3D lattice sphere dp=%g ] imposed radial normals: outer shell "
+      "kappa R / 2 = %.4f (%.3f..%.3f, %zu particles)\n",
+      dp, 0.5 * lo.mean * R, 0.5 * lo.min * R, 0.5 * lo.max * R, lo.n);
   EXPECT_NEAR(0.5 * lo.mean * R, 1.0, 0.1);
 }
 
@@ -336,8 +344,10 @@ TEST(SurfaceTensionCurvature, CorrectedCurvatureGivesEachRingItsRadius) {
     for (int ring = 0; ring < 3; ++ring) {
       const double r_ring = R - (ring + 0.5) * dp;
       const LayerStats st = layer_curvature(s, r_ring - 0.5 * dp, r_ring + 0.5 * dp);
-      std::printf("[ surface 2D rings dp=%g ] corrected curvature, ring %d: kappa r = %.5f "
-                  "(%.5f..%.5f)\n", dp, ring, st.mean * r_ring, st.min * r_ring, st.max * r_ring);
+      std::printf(
+          "[ surface 2D rings dp=%g ] corrected curvature, ring %d: kappa r = %.5f "
+          "(%.5f..%.5f)\n",
+          dp, ring, st.mean * r_ring, st.min * r_ring, st.max * r_ring);
       ASSERT_GT(st.n, 100u);
       EXPECT_NEAR(st.mean * r_ring, 1.0, 0.002) << "dp " << dp << " ring " << ring;
     }
@@ -390,9 +400,10 @@ TEST(SurfaceTensionForce, IntegratedForceMatchesLaplaceOnRings) {
         EXPECT_LT(s.sf.curvature[i] * R, 1.5);
       }
     }
-    std::printf("[ surface 2D rings dp=%g ] integrated inward force / (2 pi sigma) = %.4f, "
-                "outer-ring normals within %.3f deg of radial, |net force| / (2 pi sigma) = %.1e\n",
-                dp, ratio, worst_angle, norm(net) / (2.0 * kPi * kSigma));
+    std::printf(
+        "[ surface 2D rings dp=%g ] integrated inward force / (2 pi sigma) = %.4f, "
+        "outer-ring normals within %.3f deg of radial, |net force| / (2 pi sigma) = %.1e\n",
+        dp, ratio, worst_angle, norm(net) / (2.0 * kPi * kSigma));
     EXPECT_NEAR(ratio, 1.0, 0.05) << "dp = " << dp;
     EXPECT_LT(worst_angle, 1.0);
     EXPECT_LT(norm(net) / (2.0 * kPi * kSigma), 0.02) << "a round drop feels no net force";
@@ -405,9 +416,10 @@ TEST(SurfaceTensionForce, IntegratedForceOnLatticeCircleOvershoots) {
     surface_sums(s.prm, s.ps, s.grid, s.sf);
     surface_tension_force(s.prm, s.ps, s.grid, s.sf);
     const double ratio = integrated_force_ratio(s);
-    std::printf("[ surface 2D lattice dp=%g ] integrated inward force / (2 pi sigma) = %.4f "
-                "(PHYSICS.md: about %s)\n",
-                dp, ratio, dp > 7e-5 ? "1.6" : "1.9");
+    std::printf(
+        "[ surface 2D lattice dp=%g ] integrated inward force / (2 pi sigma) = %.4f "
+        "(PHYSICS.md: about %s)\n",
+        dp, ratio, dp > 7e-5 ? "1.6" : "1.9");
     EXPECT_GT(ratio, 1.3) << "dp = " << dp;
     EXPECT_LT(ratio, 2.5) << "dp = " << dp;
   }
@@ -447,9 +459,10 @@ void check_interior_zero(int n) {
       EXPECT_GT(std::abs(n_i[axis]), 0.999) << "face normal along the face axis";
     }
   }
-  std::printf("[ surface %dD ] lattice %d^%d: %zu interior particles (> 3h from faces) with zero "
-              "normal, curvature and force; %zu face particles with unit normals\n",
-              D, n, D, inner, outer_face);
+  std::printf(
+      "[ surface %dD ] lattice %d^%d: %zu interior particles (> 3h from faces) with zero "
+      "normal, curvature and force; %zu face particles with unit normals\n",
+      D, n, D, inner, outer_face);
   EXPECT_GT(inner, 16u);
   EXPECT_GT(outer_face, 8u);
 }
@@ -475,9 +488,9 @@ double interior_pressure(Simulation<2>& sim, double R) {
 }
 
 // The lattice start rings: the interior pressure swings by +-50 Pa around the Laplace value with a
-// period of about 0.5 ms (acoustic), decaying slowly. Checked: the mean over the last 2 ms is within
-// 15% of sigma / R, closer than the value at 1 ms, and the swing (RMS about sigma / R) over the last
-// 2 ms is smaller than over 0.5 - 2.5 ms.
+// period of about 0.5 ms (acoustic), decaying slowly. Checked: the mean over the last 2 ms is
+// within 15% of sigma / R, closer than the value at 1 ms, and the swing (RMS about sigma / R) over
+// the last 2 ms is smaller than over 0.5 - 2.5 ms.
 TEST(SurfaceTensionDroplet, InteriorPressureHeadsToLaplace) {
   const double R = 0.002, laplace = kSigma / R;  // 36.4 Pa
   const double end = 0.01;
@@ -512,11 +525,12 @@ TEST(SurfaceTensionDroplet, InteriorPressureHeadsToLaplace) {
   ASSERT_GT(late.n, 100u);
   ASSERT_GT(early.n, 100u);
   const double p_end = interior_pressure(sim, R);
-  std::printf("[ droplet 2D dp=1e-4 ] %lld steps to t = %.3g s: interior pressure %.2f Pa at 1 ms; "
-              "0.5-2.5 ms mean %.2f Pa (RMS about sigma/R %.1f Pa); last 2 ms mean %.2f Pa "
-              "(RMS %.1f Pa); %.2f Pa at the end; Laplace %.1f Pa\n",
-              static_cast<long long>(sim.step_count()), sim.time(), p_1ms, early.mean(),
-              early.rms(), late.mean(), late.rms(), p_end, laplace);
+  std::printf(
+      "[ droplet 2D dp=1e-4 ] %lld steps to t = %.3g s: interior pressure %.2f Pa at 1 ms; "
+      "0.5-2.5 ms mean %.2f Pa (RMS about sigma/R %.1f Pa); last 2 ms mean %.2f Pa "
+      "(RMS %.1f Pa); %.2f Pa at the end; Laplace %.1f Pa\n",
+      static_cast<long long>(sim.step_count()), sim.time(), p_1ms, early.mean(), early.rms(),
+      late.mean(), late.rms(), p_end, laplace);
   EXPECT_NEAR(sim.time(), end, 1e-12);
   EXPECT_NEAR(late.mean(), laplace, 0.15 * laplace);
   EXPECT_LT(std::abs(late.mean() - laplace), std::abs(p_1ms - laplace));

@@ -17,9 +17,7 @@ namespace {
 
 using test::load_case;
 
-CaseSpec case_from_text(const std::string& text) {
-  return parse_case(toml::parse(text), "test");
-}
+CaseSpec case_from_text(const std::string& text) { return parse_case(toml::parse(text), "test"); }
 
 double fluid_mass(const Simulation<2>& sim) {
   double m = 0.0;
@@ -100,7 +98,8 @@ TEST(VresStillTank, InterfaceStaysStill) {
   Simulation<2> sim(spec);
   ASSERT_EQ(sim.level_count(), 2u);
   const double m0 = fluid_mass(sim);
-  EXPECT_NEAR(m0, 50 * 25 * 0.4, 1e-6);  // both levels together: the block of 50 x 25 coarse particles
+  EXPECT_NEAR(m0, 50 * 25 * 0.4,
+              1e-6);  // both levels together: the block of 50 x 25 coarse particles
   EXPECT_GT(sim.level(0).ps.count(Kind::buffer), 100u);
   EXPECT_GT(sim.level(1).ps.count(Kind::buffer), 400u);
   while (sim.time() < spec.end_time - 1e-12) sim.step();
@@ -114,8 +113,10 @@ TEST(VresStillTank, InterfaceStaysStill) {
     }
   }
   const double scale = std::sqrt(9.81 * 0.49);
-  std::printf("still tank with a box: max speed near the box %.4f m/s (%.2f%% of sqrt(gH)), "
-              "fluid mass %+.3f%%\n", near, 100 * near / scale, 100 * (fluid_mass(sim) / m0 - 1));
+  std::printf(
+      "still tank with a box: max speed near the box %.4f m/s (%.2f%% of sqrt(gH)), "
+      "fluid mass %+.3f%%\n",
+      near, 100 * near / scale, 100 * (fluid_mass(sim) / m0 - 1));
   EXPECT_LT(near, 0.05 * scale);
   EXPECT_NEAR(fluid_mass(sim) / m0, 1.0, 0.005);
 }
@@ -207,8 +208,10 @@ TEST(VresDroplet, CurvatureAtTheCrossingsMatchesTheRestOfTheSurface) {
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.kind[i] != Kind::fluid || norm(sf.normal[i]) == 0.0) continue;
       if (norm(ps.pos[i]) < 1.85e-3) continue;  // outer rows of both levels
-      if (std::abs(ps.pos[i][0]) < 2e-4) near += sf.curvature[i], ++n_near;
-      else far += sf.curvature[i], ++n_far;
+      if (std::abs(ps.pos[i][0]) < 2e-4)
+        near += sf.curvature[i], ++n_near;
+      else
+        far += sf.curvature[i], ++n_far;
     }
     ASSERT_GT(n_near, 4);
     ASSERT_GT(n_far, 50);

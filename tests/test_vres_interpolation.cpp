@@ -106,7 +106,10 @@ template <int D>
 void check_linear(int n) {
   const Donors<D> d = make_donors<D>(lattice<D>(n, 0.25), n);
   const double c = 0.5 * n;  // centre, in dp
-  struct Case { Vec<D> x; const char* where; };
+  struct Case {
+    Vec<D> x;
+    const char* where;
+  };
   const Case cases[] = {{point<D>(c + 0.3, c - 0.2, c + 0.1), "bulk"},
                         {point<D>(c - 0.17, c + 0.41, c - 0.33), "bulk"},
                         {point<D>(0.6, c, c), "0.6 dp inside a face"},
@@ -116,9 +119,10 @@ void check_linear(int n) {
   for (const auto& cs : cases) {
     const auto s = d.at(cs.x);
     const auto shep = d.at(cs.x, 0.0);  // cond_limit 0: always the Shepard fallback
-    std::printf("[ vres %dD %-22s] shepard %.3f  cond %7.2f  corrected error %.1e  "
-                "Shepard error %.1e\n",
-                D, cs.where, s.shepard, s.cond, rel_error(s, cs.x), rel_error(shep, cs.x));
+    std::printf(
+        "[ vres %dD %-22s] shepard %.3f  cond %7.2f  corrected error %.1e  "
+        "Shepard error %.1e\n",
+        D, cs.where, s.shepard, s.cond, rel_error(s, cs.x), rel_error(shep, cs.x));
     EXPECT_TRUE(s.corrected) << cs.where;
     EXPECT_LT(rel_error(s, cs.x), 1e-10) << cs.where;
     EXPECT_FALSE(shep.corrected);

@@ -17,7 +17,8 @@ double surge_front(const ParticleSet<D>& ps, int axis) {
   return x;
 }
 
-std::vector<FrontPoint> load_front_reference(const std::string& csv_path, const std::string& source) {
+std::vector<FrontPoint> load_front_reference(const std::string& csv_path,
+                                             const std::string& source) {
   std::ifstream in(csv_path);
   if (!in) throw std::runtime_error(csv_path + ": cannot open the dam-break reference");
   std::vector<FrontPoint> out;

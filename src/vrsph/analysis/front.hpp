@@ -22,7 +22,8 @@ struct FrontPoint {
 };
 
 // Rows of one source ("martin_moyce_1952", "koshizuka_oka_1996") of the reference file.
-std::vector<FrontPoint> load_front_reference(const std::string& csv_path, const std::string& source);
+std::vector<FrontPoint> load_front_reference(const std::string& csv_path,
+                                             const std::string& source);
 
 struct FrontError {
   double rms = 0.0;

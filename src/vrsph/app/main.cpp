@@ -64,7 +64,8 @@ CLI::App* add_run_command(CLI::App& app, CliArgs& a) {
 }
 
 CLI::App* add_check_command(CLI::App& app, CliArgs& a) {
-  CLI::App* check = app.add_subcommand("check", "validate a case and report particle counts and dt");
+  CLI::App* check =
+      app.add_subcommand("check", "validate a case and report particle counts and dt");
   check->add_option("case", a.case_path, "case file (TOML)")->required();
   check->add_option("--set", a.sets, "override a case key: KEY=VALUE (repeatable)");
   return check;
@@ -92,16 +93,20 @@ int run_command(const CliArgs& a) {
   ro.cells_per_support = a.cells;
   ro.halt_after_output = a.halt_after;
   if (!a.resume_dir.empty()) {
-    if (!a.case_path.empty()) throw CaseError("run: give either a case file or --resume DIR, not both");
-    if (!a.out_dir.empty()) throw CaseError("run: --out cannot be combined with --resume (the run continues in DIR)");
+    if (!a.case_path.empty())
+      throw CaseError("run: give either a case file or --resume DIR, not both");
+    if (!a.out_dir.empty())
+      throw CaseError("run: --out cannot be combined with --resume (the run continues in DIR)");
     check_resume_overrides(a.sets);
     ro.resume = true;
     ro.out_dir = a.resume_dir;
-    return run_case(load_case((std::filesystem::path(a.resume_dir) / "case.toml").string(), a.sets), ro);
+    return run_case(load_case((std::filesystem::path(a.resume_dir) / "case.toml").string(), a.sets),
+                    ro);
   }
   if (a.case_path.empty()) throw CaseError("run: a case file (or --resume DIR) is required");
   CaseSpec spec = load_case(a.case_path, a.sets);
-  ro.out_dir = a.out_dir.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(a.out_dir);
+  ro.out_dir = a.out_dir.empty() ? std::filesystem::path("out") / spec.name
+                                 : std::filesystem::path(a.out_dir);
   return run_case(std::move(spec), ro);
 }
 

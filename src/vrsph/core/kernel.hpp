@@ -1,7 +1,7 @@
 // Wendland C2 kernel (Wendland 1995), support radius 2h, as used by DualSPHysics.
 //   W(q) = a_D (1 - q/2)^4 (2q + 1),  q = r/h in [0, 2]
-//   a_2 = 7 / (4 pi h^2),  a_3 = 21 / (16 pi h^3)   (exact constants, not DualSPHysics' rounded ones)
-//   grad_i W_ij = F(r) r_ij,  F(r) = W'(r)/r = -5 a_D / h^2 (1 - q/2)^3
+//   a_2 = 7 / (4 pi h^2),  a_3 = 21 / (16 pi h^3)   (exact constants, not DualSPHysics' rounded
+//   ones) grad_i W_ij = F(r) r_ij,  F(r) = W'(r)/r = -5 a_D / h^2 (1 - q/2)^3
 // Callers test r^2 < 4h^2 before calling; the functions do not check the support.
 #pragma once
 

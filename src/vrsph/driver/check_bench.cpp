@@ -25,14 +25,15 @@ int check_impl(CaseSpec& spec) {
              sim.params().h, spec.h_over_dp, sim.params().mass);
   for (std::size_t l = 1; l < sim.level_count(); ++l) {
     const auto& L = sim.level(l);
-    fmt::print("  level {} (inside refinement box, parent level {}): dp = {:g} m, h = {:g} m, "
-               "{} fluid, {} buffer, {} wall, {} mass points\n",
-               l, sim.link(l).region.parent, L.prm.dp, L.prm.h, L.ps.count(Kind::fluid),
-               L.ps.count(Kind::buffer), L.ps.count(Kind::wall), sim.link(l).mass_points.size());
+    fmt::print(
+        "  level {} (inside refinement box, parent level {}): dp = {:g} m, h = {:g} m, "
+        "{} fluid, {} buffer, {} wall, {} mass points\n",
+        l, sim.link(l).region.parent, L.prm.dp, L.prm.h, L.ps.count(Kind::fluid),
+        L.ps.count(Kind::buffer), L.ps.count(Kind::wall), sim.link(l).mass_points.size());
   }
   if (sim.level_count() > 1) {
-    fmt::print("  level 0 (coarsest): {} buffer, {} mass points\n",
-               ps.count(Kind::buffer), sim.link(0).mass_points.size());
+    fmt::print("  level 0 (coarsest): {} buffer, {} mass points\n", ps.count(Kind::buffer),
+               sim.link(0).mass_points.size());
   }
   fmt::print("  c0 = {:.6g} m/s (max_speed {:.6g} m/s), B = {:.6g} Pa\n", sim.setup().c0,
              sim.setup().max_speed, sim.params().eos.b);
@@ -69,11 +70,12 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   j["steps_per_second"] = sim.step_count() / wall;
   j["particle_steps_per_second"] = c.particle_steps / wall;
   j["pair_interactions_per_second"] = c.pairs / wall;
-  j["pairs_per_particle_step"] = static_cast<double>(c.pairs) / static_cast<double>(c.particle_steps);
-  j["pass_share"] = {{"sort", t.sort / wall},     {"forces", t.forces / wall},
-                     {"surface", t.surface / wall},
-                     {"update", t.update / wall}, {"checks", t.checks / wall},
-                     {"other", std::max(0.0, wall - accounted) / wall}};
+  j["pairs_per_particle_step"] =
+      static_cast<double>(c.pairs) / static_cast<double>(c.particle_steps);
+  j["pass_share"] = {
+      {"sort", t.sort / wall},       {"forces", t.forces / wall},
+      {"surface", t.surface / wall}, {"update", t.update / wall},
+      {"checks", t.checks / wall},   {"other", std::max(0.0, wall - accounted) / wall}};
   j["cells_per_support"] = opt.cells_per_support;
   fmt::print("bench {}: {} particles, {} steps to t = {:g} s on {} thread(s) in {:.2f} s\n",
              spec.name, sim.total_particles(), sim.step_count(), sim.time(), threads, wall);
@@ -81,10 +83,11 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   // docs/validation.md), so no ratio to a figure taken elsewhere is printed.
   fmt::print("  {:.3f} M particle-steps/s, {:.1f} M pair interactions/s, {:.1f} steps/s\n",
              c.particle_steps / wall / 1e6, c.pairs / wall / 1e6, sim.step_count() / wall);
-  fmt::print("  time per pass: forces {:.1f}%, surface {:.1f}%, sort {:.1f}%, update {:.1f}%, "
-             "checks {:.1f}%, other {:.1f}%\n",
-             100 * t.forces / wall, 100 * t.surface / wall, 100 * t.sort / wall, 100 * t.update / wall,
-             100 * t.checks / wall, 100 * std::max(0.0, wall - accounted) / wall);
+  fmt::print(
+      "  time per pass: forces {:.1f}%, surface {:.1f}%, sort {:.1f}%, update {:.1f}%, "
+      "checks {:.1f}%, other {:.1f}%\n",
+      100 * t.forces / wall, 100 * t.surface / wall, 100 * t.sort / wall, 100 * t.update / wall,
+      100 * t.checks / wall, 100 * std::max(0.0, wall - accounted) / wall);
   fmt::print("{}\n", j.dump());
   if (opt.json_out) write_summary_json(*opt.json_out, j);
   return kExitOk;

@@ -37,7 +37,8 @@ void write_records(std::ostream& os, const std::map<std::string, std::vector<T>>
     os.write(name.data(), static_cast<std::streamsize>(name.size()));
     write_pod(os, type);
     write_pod(os, static_cast<std::uint64_t>(v.size()));
-    os.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+    os.write(reinterpret_cast<const char*>(v.data()),
+             static_cast<std::streamsize>(v.size() * sizeof(T)));
   }
 }
 
@@ -49,7 +50,8 @@ void read_array(std::istream& is, std::uint64_t count, std::vector<T>& v) {
 }
 
 template <class T>
-const std::vector<T>& find(const std::map<std::string, std::vector<T>>& m, const std::string& name) {
+const std::vector<T>& find(const std::map<std::string, std::vector<T>>& m,
+                           const std::string& name) {
   auto it = m.find(name);
   if (it == m.end()) throw std::runtime_error("checkpoint: record '" + name + "' is missing");
   return it->second;
@@ -63,8 +65,12 @@ void Checkpoint::put(const std::string& n, std::vector<std::uint64_t> v) { u64_[
 void Checkpoint::put(const std::string& n, std::vector<std::uint8_t> v) { u8_[n] = std::move(v); }
 
 const std::vector<double>& Checkpoint::f64(const std::string& n) const { return find(f64_, n); }
-const std::vector<std::int64_t>& Checkpoint::i64(const std::string& n) const { return find(i64_, n); }
-const std::vector<std::uint64_t>& Checkpoint::u64(const std::string& n) const { return find(u64_, n); }
+const std::vector<std::int64_t>& Checkpoint::i64(const std::string& n) const {
+  return find(i64_, n);
+}
+const std::vector<std::uint64_t>& Checkpoint::u64(const std::string& n) const {
+  return find(u64_, n);
+}
 const std::vector<std::uint8_t>& Checkpoint::u8(const std::string& n) const { return find(u8_, n); }
 
 double Checkpoint::scalar(const std::string& n) const {
@@ -89,16 +95,21 @@ std::vector<std::string> Checkpoint::names() const {
 
 template <class T>
 const std::vector<T>& Checkpoint::get(const std::string& n) const {
-  if constexpr (std::is_same_v<T, double>) return f64(n);
-  else if constexpr (std::is_same_v<T, std::int64_t>) return i64(n);
-  else if constexpr (std::is_same_v<T, std::uint64_t>) return u64(n);
-  else return u8(n);
+  if constexpr (std::is_same_v<T, double>)
+    return f64(n);
+  else if constexpr (std::is_same_v<T, std::int64_t>)
+    return i64(n);
+  else if constexpr (std::is_same_v<T, std::uint64_t>)
+    return u64(n);
+  else
+    return u8(n);
 }
 
 template <class T>
 T Checkpoint::value(const std::string& n) const {
   const auto& v = get<T>(n);
-  if (v.size() != 1) throw std::runtime_error("checkpoint: record '" + n + "' is not a single value");
+  if (v.size() != 1)
+    throw std::runtime_error("checkpoint: record '" + n + "' is not a single value");
   return v[0];
 }
 
@@ -141,11 +152,20 @@ Checkpoint Checkpoint::load(const std::filesystem::path& path) {
     const auto type = read_pod<RecordType>(is);
     const auto count = read_pod<std::uint64_t>(is);
     switch (type) {
-      case RecordType::f64: read_array(is, count, c.f64_[name]); break;
-      case RecordType::i64: read_array(is, count, c.i64_[name]); break;
-      case RecordType::u64: read_array(is, count, c.u64_[name]); break;
-      case RecordType::u8: read_array(is, count, c.u8_[name]); break;
-      default: throw std::runtime_error(path.string() + ": unknown record type in checkpoint");
+      case RecordType::f64:
+        read_array(is, count, c.f64_[name]);
+        break;
+      case RecordType::i64:
+        read_array(is, count, c.i64_[name]);
+        break;
+      case RecordType::u64:
+        read_array(is, count, c.u64_[name]);
+        break;
+      case RecordType::u8:
+        read_array(is, count, c.u8_[name]);
+        break;
+      default:
+        throw std::runtime_error(path.string() + ": unknown record type in checkpoint");
     }
   }
   return c;
@@ -192,10 +212,12 @@ template <class T>
 void from_record(const std::vector<typename RecordOf<T>::type>& r, std::vector<T>& v) {
   constexpr std::size_t w = RecordOf<T>::width;
   for (std::size_t i = 0; i < v.size(); ++i) {
-    if constexpr (std::is_same_v<T, Kind>) v[i] = static_cast<Kind>(r[i]);
+    if constexpr (std::is_same_v<T, Kind>)
+      v[i] = static_cast<Kind>(r[i]);
     else if constexpr (w > 1)
       for (std::size_t k = 0; k < w; ++k) v[i][static_cast<int>(k)] = r[i * w + k];
-    else v[i] = r[i];
+    else
+      v[i] = r[i];
   }
 }
 
@@ -223,8 +245,8 @@ void Checkpoint::get_particles(int level, ParticleSet<D>& ps) const {
     const std::string record = pre + std::string(name);
     const auto& r = get<typename RecordOf<T>::type>(record);
     if (r.size() != n * RecordOf<T>::width) {
-      throw std::runtime_error(fmt::format("checkpoint: {} has {} values for {} particles",
-                                           record, r.size(), n));
+      throw std::runtime_error(
+          fmt::format("checkpoint: {} has {} values for {} particles", record, r.size(), n));
     }
     from_record(r, v);
   });

@@ -39,17 +39,16 @@ void prepare_out_dir(const std::filesystem::path& dir, bool force) {
   namespace fs = std::filesystem;
   if (fs::exists(dir / "case.toml") || fs::exists(dir / "checkpoint.bin")) {
     if (!force) {
-      throw CaseError(fmt::format(
-          "--out {}: holds an earlier run (case.toml): use --force to overwrite it or "
-          "--resume to continue it",
-          dir.string()));
+      throw CaseError(
+          fmt::format("--out {}: holds an earlier run (case.toml): use --force to overwrite it or "
+                      "--resume to continue it",
+                      dir.string()));
     }
     for (const auto& e : fs::directory_iterator(dir)) {
       const std::string n = e.path().filename().string();
       const bool ours = n.starts_with("particles_") || n.starts_with("line_") ||
                         n == "particles.pvd" || n == "series.csv" || n == "summary.json" ||
-                        n == "case.toml" || n == "checkpoint.bin" ||
-                        n == "refinement_boxes.vtp";
+                        n == "case.toml" || n == "checkpoint.bin" || n == "refinement_boxes.vtp";
       if (ours && e.is_regular_file()) fs::remove(e.path());
     }
   }
@@ -100,11 +99,12 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
   RunOutputs<D> out(spec, opt.out_dir, !opt.resume, sim.time());
   const int threads = exec::thread_count();
   if (!opt.quiet) {
-    fmt::print("vrsph: {} ({}D): {} fluid + {} wall particles, dp = {:g} m, h = {:g} m, c0 = {:.4g} m/s, "
-               "{} thread(s), output in {}{}\n",
-               spec.name, D, sim.count(Kind::fluid), sim.count(Kind::wall),
-               spec.dp, sim.params().h, sim.setup().c0, threads, opt.out_dir.string(),
-               opt.resume ? fmt::format(" (resumed at t = {:g} s)", sim.time()) : "");
+    fmt::print(
+        "vrsph: {} ({}D): {} fluid + {} wall particles, dp = {:g} m, h = {:g} m, c0 = {:.4g} m/s, "
+        "{} thread(s), output in {}{}\n",
+        spec.name, D, sim.count(Kind::fluid), sim.count(Kind::wall), spec.dp, sim.params().h,
+        sim.setup().c0, threads, opt.out_dir.string(),
+        opt.resume ? fmt::format(" (resumed at t = {:g} s)", sim.time()) : "");
     std::fflush(stdout);
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -144,10 +144,10 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
   }
   if (!opt.quiet) {
     const RunCounters& c = sim.counters();
-    fmt::print("vrsph: done: t = {:g} s in {} steps, {:.1f} s wall, {:.3g} M particle-steps/s, "
-               "{:.3g} M pair interactions/s\n",
-               sim.time(), sim.step_count(), wall, c.particle_steps / wall / 1e6,
-               c.pairs / wall / 1e6);
+    fmt::print(
+        "vrsph: done: t = {:g} s in {} steps, {:.1f} s wall, {:.3g} M particle-steps/s, "
+        "{:.3g} M pair interactions/s\n",
+        sim.time(), sim.step_count(), wall, c.particle_steps / wall / 1e6, c.pairs / wall / 1e6);
   }
   return kExitOk;
 }

@@ -19,10 +19,10 @@ inline constexpr int kExitHalted = 9;  // --halt-after-output (tests only)
 
 struct RunOptions {
   std::filesystem::path out_dir;
-  int threads = 0;        // 0: OpenMP default
+  int threads = 0;  // 0: OpenMP default
   bool quiet = false;
-  bool force = false;     // overwrite an existing run in out_dir
-  bool resume = false;    // continue from out_dir/checkpoint.bin
+  bool force = false;   // overwrite an existing run in out_dir
+  bool resume = false;  // continue from out_dir/checkpoint.bin
   int cells_per_support = 2;
   int halt_after_output = -1;  // testing aid: exit abruptly after snapshot K, as a kill would
 };

@@ -60,7 +60,8 @@ RunState restore_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
     if (levels > 1) {
       const auto& m = ck.f64(fmt::format("level{}.point_mass", l));
       if (m.size() != sim.link(l).mass_points.size())
-        throw CaseError("--resume: the checkpoint's mass points do not match the case's refinement boxes");
+        throw CaseError(
+            "--resume: the checkpoint's mass points do not match the case's refinement boxes");
       for (std::size_t q = 0; q < m.size(); ++q) sim.link(l).mass_points[q].mass = m[q];
     }
   }

@@ -51,7 +51,8 @@ void for_each_record(S& s, F&& f) {
   f(std::string("output_index"), s.output_index);
   f(std::string("levels"), s.levels);
   f(std::string("initial_fluid"), s.initial_fluid);
-  for_each_counter(s.counters, [&f](const std::string& name, auto& v) { f("counters." + name, v); });
+  for_each_counter(s.counters,
+                   [&f](const std::string& name, auto& v) { f("counters." + name, v); });
 }
 
 void put_run_state(Checkpoint& ck, const RunState& s);

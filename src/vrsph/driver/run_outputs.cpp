@@ -1,8 +1,8 @@
 #include "vrsph/driver/run_outputs.hpp"
 
-#include <limits>
-
 #include <fmt/format.h>
+
+#include <limits>
 
 #include "vrsph/analysis/laplace.hpp"
 #include "vrsph/driver/level_samples.hpp"
@@ -16,7 +16,8 @@ namespace {
 
 SeriesWriter open_series(const std::filesystem::path& path, bool fresh, double t,
                          std::vector<std::string> extra) {
-  return fresh ? SeriesWriter(path, std::move(extra)) : SeriesWriter::resume(path, t, std::move(extra));
+  return fresh ? SeriesWriter(path, std::move(extra))
+               : SeriesWriter::resume(path, t, std::move(extra));
 }
 
 PvdCollection open_pvd(const std::filesystem::path& path, bool fresh, double t) {
@@ -138,7 +139,8 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
     pvd_.add(sim.time(), name);
     pvd_.write();
   }
-  if (spec_.write_csv) write_particles_csv<D>(dir_ / snapshot_file_name(index, "csv"), ps, extras, level);
+  if (spec_.write_csv)
+    write_particles_csv<D>(dir_ / snapshot_file_name(index, "csv"), ps, extras, level);
   for (const OutputLine& line : spec_.lines) {
     const auto samples = sample_levels(sim, line);
     write_line_samples<D>(dir_ / line_file_name(line.name, index), samples);
@@ -150,8 +152,10 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   for (std::size_t l = 0; l < nl; ++l) {
     in.levels.push_back(compute_series_row<D>(sim.level(l).ps, sim.time(),
                                               static_cast<long>(sim.step_count()), sim.dt_last()));
-    if (l == 0) row = in.levels[0];
-    else accumulate_series_row(row, in.levels[l]);
+    if (l == 0)
+      row = in.levels[0];
+    else
+      accumulate_series_row(row, in.levels[l]);
   }
   if (has_laplace(spec_)) in.laplace = first_line_laplace(sim, spec_);
   for (const SeriesExtraColumn& c : extras_) row.extra.push_back(c.value(in));
@@ -162,9 +166,8 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
 }
 
 template <int D>
-nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
-                                      double wall_seconds, int threads,
-                                      const std::string& error) const {
+nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed, double wall_seconds,
+                                      int threads, const std::string& error) const {
   const RunCounters& c = sim.counters();
   nlohmann::json j;
   j["completed"] = completed;
@@ -184,12 +187,17 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
     nlohmann::json levels = nlohmann::json::array();
     for (std::size_t l = 0; l < sim.level_count(); ++l) {
       const auto& L = sim.level(l);
-      levels.push_back({{"dp", L.prm.dp}, {"h", L.prm.h}, {"fluid", L.ps.count(Kind::fluid)},
-                        {"buffer", L.ps.count(Kind::buffer)}, {"wall", L.ps.count(Kind::wall)}});
+      levels.push_back({{"dp", L.prm.dp},
+                        {"h", L.prm.h},
+                        {"fluid", L.ps.count(Kind::fluid)},
+                        {"buffer", L.ps.count(Kind::buffer)},
+                        {"wall", L.ps.count(Kind::wall)}});
     }
     j["levels"] = levels;
-    j["vres"] = {{"created", c.created}, {"deleted", c.deleted},
-                 {"created_mass", c.created_mass}, {"deleted_mass", c.deleted_mass}};
+    j["vres"] = {{"created", c.created},
+                 {"deleted", c.deleted},
+                 {"created_mass", c.created_mass},
+                 {"deleted_mass", c.deleted_mass}};
   }
   j["lost_fluid"] = c.lost_fluid;
   nlohmann::json limits;
@@ -202,12 +210,15 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed,
   j["dp"] = spec_.dp;
   const PassTimes& t = sim.pass_times();
   j["pass_seconds"] = {{"sort", t.sort},     {"surface", t.surface}, {"forces", t.forces},
-                       {"update", t.update}, {"checks", t.checks}, {"coupling", t.coupling}};
+                       {"update", t.update}, {"checks", t.checks},   {"coupling", t.coupling}};
   if (has_laplace(spec_)) {
     const LaplaceError e = first_line_laplace(sim, spec_);
-    j["laplace"] = {{"expected", e.expected}, {"mean_interior", e.mean_interior},
-                    {"rmse", e.rmse},         {"nrmse", e.nrmse},
-                    {"rmse_all", e.rmse_all}, {"n_points", e.n_points},
+    j["laplace"] = {{"expected", e.expected},
+                    {"mean_interior", e.mean_interior},
+                    {"rmse", e.rmse},
+                    {"nrmse", e.nrmse},
+                    {"rmse_all", e.rmse_all},
+                    {"n_points", e.n_points},
                     {"line", spec_.lines.front().name}};
   }
   return j;

@@ -4,9 +4,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-#include <nlohmann/json.hpp>
 
 #include "vrsph/analysis/laplace.hpp"
 #include "vrsph/output/series.hpp"
@@ -40,8 +40,8 @@ class RunOutputs {
   void write(Simulation<D>& sim, int index);
 
   // The summary of a finished or stopped run.
-  nlohmann::json summary(const Simulation<D>& sim, bool completed, double wall_seconds,
-                         int threads, const std::string& error) const;
+  nlohmann::json summary(const Simulation<D>& sim, bool completed, double wall_seconds, int threads,
+                         const std::string& error) const;
 
   const std::filesystem::path& dir() const { return dir_; }
 

@@ -32,8 +32,8 @@ struct PairGeometry {
 // when the body starts. The sweep adds them to its reductions; a body names the slots it uses,
 // the others cost nothing.
 struct PairSums {
-  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0, s9 = 0,
-         s10 = 0, s11 = 0;
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0, s9 = 0, s10 = 0,
+         s11 = 0;
   double max = -1e300;
 };
 

@@ -157,8 +157,10 @@ void SeriesWriter::append(const SeriesRow& row) {
   fmt::memory_buffer buf;
   const char* sep = "";
   for (const SeriesColumn& c : kSeriesColumns) {
-    if (c.real) fmt::format_to(fmt::appender(buf), "{}{}", sep, row.*c.real);
-    else fmt::format_to(fmt::appender(buf), "{}{}", sep, row.*c.count);
+    if (c.real)
+      fmt::format_to(fmt::appender(buf), "{}{}", sep, row.*c.real);
+    else
+      fmt::format_to(fmt::appender(buf), "{}{}", sep, row.*c.count);
     sep = ",";
   }
   for (double v : row.extra) fmt::format_to(fmt::appender(buf), ",{}", v);

@@ -144,9 +144,12 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
     const std::size_t np = ps.size();
     // Every array of the field list; one a level has not filled yet (p before the first
     // pressure update) stays zero.
-    ParticleSet<D>::zip_fields([&](std::string_view, FieldRole, auto& out, const auto& in) {
-      std::copy_n(in.begin(), std::min(np, in.size()), out.begin() + static_cast<std::ptrdiff_t>(j));
-    }, m.particles, ps);
+    ParticleSet<D>::zip_fields(
+        [&](std::string_view, FieldRole, auto& out, const auto& in) {
+          std::copy_n(in.begin(), std::min(np, in.size()),
+                      out.begin() + static_cast<std::ptrdiff_t>(j));
+        },
+        m.particles, ps);
     std::fill_n(m.level.begin() + static_cast<std::ptrdiff_t>(j), np, static_cast<std::uint8_t>(l));
     j += np;
   }

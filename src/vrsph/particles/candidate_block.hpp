@@ -55,7 +55,8 @@ struct CandidateBlock {
  private:
   template <int D, class Fn>
   static void for_each_group_run(const CellGrid<D>& grid, std::int64_t c, Groups g, Fn&& fn) {
-    if (static_cast<int>(g) & static_cast<int>(Groups::fluid)) grid.for_each_run(c, Group::fluid, fn);
+    if (static_cast<int>(g) & static_cast<int>(Groups::fluid))
+      grid.for_each_run(c, Group::fluid, fn);
     if (static_cast<int>(g) & static_cast<int>(Groups::wall)) grid.for_each_run(c, Group::wall, fn);
   }
 };

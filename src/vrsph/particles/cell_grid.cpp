@@ -122,7 +122,8 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   pcell_.resize(n);
   fit_to(ps);
   exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-    pcell_[i] = inside(ps.pos[i]) ? static_cast<std::int64_t>(key(cell_of(ps.pos[i]), ps.kind[i])) : -1;
+    pcell_[i] =
+        inside(ps.pos[i]) ? static_cast<std::int64_t>(key(cell_of(ps.pos[i]), ps.kind[i])) : -1;
   });
   std::size_t kept = 0;
   for (std::size_t i = 0; i < n; ++i) {  // histogram (serial: cheap, and no atomics)
@@ -145,19 +146,27 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   // scratch_; after the swap scratch_ holds the previous storage, so nothing is allocated once
   // the sizes have settled.
   using PS = ParticleSet<D>;
-  PS::zip_fields([kept](std::string_view, FieldRole role, auto&, auto& s) {
-    if (carried(role)) s.resize(kept);
-  }, ps, scratch_);
+  PS::zip_fields(
+      [kept](std::string_view, FieldRole role, auto&, auto& s) {
+        if (carried(role)) s.resize(kept);
+      },
+      ps, scratch_);
   cell_scratch_.resize(kept);
-  PS::zip_fields([this](std::string_view, FieldRole role, const auto& a, auto& s) {
-    if (carried(role)) permute_into(a, perm_, s);
-  }, ps, scratch_);
+  PS::zip_fields(
+      [this](std::string_view, FieldRole role, const auto& a, auto& s) {
+        if (carried(role)) permute_into(a, perm_, s);
+      },
+      ps, scratch_);
   permute_into(pcell_, perm_, cell_scratch_);
   // Derived fields (p, acc, drho) are recomputed after every sort: only resized.
-  PS::zip_fields([kept](std::string_view, FieldRole role, auto& a, auto& s) {
-    if (carried(role)) a.swap(s);
-    else a.resize(kept);
-  }, ps, scratch_);
+  PS::zip_fields(
+      [kept](std::string_view, FieldRole role, auto& a, auto& s) {
+        if (carried(role))
+          a.swap(s);
+        else
+          a.resize(kept);
+      },
+      ps, scratch_);
   pcell_.swap(cell_scratch_);
   // pcell_ held sort keys; particle_cells() gives cells, without the wall group's offset.
   const auto wall_begin = static_cast<std::int64_t>(group_begin(Group::wall));

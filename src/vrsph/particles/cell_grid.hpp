@@ -63,7 +63,9 @@ class CellGrid {
   const std::vector<std::int64_t>& particle_cells() const { return pcell_; }
   std::int64_t cell_count() const { return ncell_total_; }
   // Index range of group g after the last sort: fluid first, then walls.
-  std::uint32_t group_begin(Group g) const { return begin_[static_cast<std::size_t>(g) * ncell_total_]; }
+  std::uint32_t group_begin(Group g) const {
+    return begin_[static_cast<std::size_t>(g) * ncell_total_];
+  }
   std::uint32_t group_end(Group g) const {
     return begin_[(static_cast<std::size_t>(g) + 1) * ncell_total_];
   }

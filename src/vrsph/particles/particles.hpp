@@ -16,9 +16,12 @@ enum class Kind : std::uint8_t { fluid = 0, wall = 1, buffer = 2 };
 
 inline std::string_view kind_name(Kind k) {
   switch (k) {
-    case Kind::fluid: return "fluid";
-    case Kind::wall: return "wall";
-    case Kind::buffer: return "buffer";
+    case Kind::fluid:
+      return "fluid";
+    case Kind::wall:
+      return "wall";
+    case Kind::buffer:
+      return "buffer";
   }
   return "unknown";
 }
@@ -38,14 +41,14 @@ template <int D>
 struct ParticleSet {
   std::vector<std::uint64_t> id;  // permanent particle id
   std::vector<Kind> kind;
-  std::vector<Vec<D>> pos;        // m
-  std::vector<Vec<D>> vel;        // m/s
-  std::vector<double> rho;        // kg/m^3
-  std::vector<double> mass;       // kg
-  std::vector<Vec<D>> shift;      // last shifting displacement, m (an output field)
-  std::vector<double> p;          // pressure, Pa
-  std::vector<Vec<D>> acc;        // dv/dt without gravity, m/s^2
-  std::vector<double> drho;       // drho/dt, kg/m^3/s
+  std::vector<Vec<D>> pos;    // m
+  std::vector<Vec<D>> vel;    // m/s
+  std::vector<double> rho;    // kg/m^3
+  std::vector<double> mass;   // kg
+  std::vector<Vec<D>> shift;  // last shifting displacement, m (an output field)
+  std::vector<double> p;      // pressure, Pa
+  std::vector<Vec<D>> acc;    // dv/dt without gravity, m/s^2
+  std::vector<double> drho;   // drho/dt, kg/m^3/s
   std::vector<Vec<D>> pos0;
   std::vector<Vec<D>> vel0;
   std::vector<double> rho0;

@@ -45,8 +45,8 @@ template <int D>
 inline Vec<D> shifting_displacement(const ShiftingLevel& s, const Vec<D>& grad_c, double div_r,
                                     double speed, double dt) {
   if (s.model == ShiftingModel::none || div_r < s.surface_threshold) return Vec<D>{};
-  const double scale = s.model == ShiftingModel::lind ? s.coefficient * s.h * s.h
-                                                      : s.coefficient * s.h * speed * dt;
+  const double scale =
+      s.model == ShiftingModel::lind ? s.coefficient * s.h * s.h : s.coefficient * s.h * speed * dt;
   const double surface = (div_r - s.surface_threshold) / (D - s.surface_threshold);
   Vec<D> dr = grad_c * (-scale * surface);
   const double cap = 0.1 * s.dp;

@@ -22,11 +22,15 @@ constexpr std::string_view kFluidKeys[] = {"density", "kinematic_viscosity", "su
                                            "gravity"};
 constexpr std::string_view kEosKeys[] = {"gamma", "max_speed", "sound_speed_factor", "sound_speed"};
 constexpr std::string_view kResolutionKeys[] = {"dp", "h_over_dp"};
-constexpr std::string_view kNumericsKeys[] = {
-    "cfl",      "viscosity",       "density_diffusion",
-    "shifting", "surface_tension", "hydrostatic_initial_density", "vres_conserve_momentum",
-    "vres_buffer_fill_min"};
-constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",  "min",
+constexpr std::string_view kNumericsKeys[] = {"cfl",
+                                              "viscosity",
+                                              "density_diffusion",
+                                              "shifting",
+                                              "surface_tension",
+                                              "hydrostatic_initial_density",
+                                              "vres_conserve_momentum",
+                                              "vres_buffer_fill_min"};
+constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",   "min",
                                                 "max",   "fill",   "velocity", "pressure"};
 constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
 constexpr std::string_view kDomainKeys[] = {"min", "max", "max_lost_fraction"};

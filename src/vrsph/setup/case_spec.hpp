@@ -33,7 +33,7 @@ struct FluidBlock {
   Vec3d min{};  // box
   Vec3d max{};
   FillMode fill = FillMode::lattice;
-  Vec3d velocity{};  // initial velocity (m/s)
+  Vec3d velocity{};       // initial velocity (m/s)
   double pressure = 0.0;  // initial pressure (Pa): the density starts at the EOS value for it
 
   bool operator==(const FluidBlock&) const = default;

@@ -112,7 +112,13 @@ void fill_tank(const Vec<D>& min, const Vec<D>& max, int layers, double dp, Fn&&
         for (int k = 0; k < D; ++k) {
           if (k == vert || k == axis) continue;
           // walls of the first horizontal axis span the grown extent; later ones fit inside
-          if (k > axis) { lo[k] -= grow; hi[k] += grow; } else { lo[k] += dp; hi[k] -= dp; }
+          if (k > axis) {
+            lo[k] -= grow;
+            hi[k] += grow;
+          } else {
+            lo[k] += dp;
+            hi[k] -= dp;
+          }
         }
         const double face = side == 0 ? min[axis] - l * dp : max[axis] + l * dp;
         lo[axis] = hi[axis] = face;
@@ -141,14 +147,18 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
     };
     if (b.shape == BlockShape::box) {
       const Vec<D> lo = to_vec<D>(b.min), hi = to_vec<D>(b.max);
-      if (b.fill == FillMode::cells) for_each_cell_centre<D>(lo, hi, dp, add);
-      else for_each_node<D>(lo, hi, dp, add);
+      if (b.fill == FillMode::cells)
+        for_each_cell_centre<D>(lo, hi, dp, add);
+      else
+        for_each_node<D>(lo, hi, dp, add);
       zmin = std::min(zmin, b.min[vert]);
       zmax = std::max(zmax, b.max[vert]);
     } else {
       if constexpr (D == 2) {
-        if (b.fill == FillMode::rings) fill_circle_rings(to_vec<2>(b.center), b.radius, dp, add);
-        else fill_ball_lattice<D>(to_vec<D>(b.center), b.radius, dp, add);
+        if (b.fill == FillMode::rings)
+          fill_circle_rings(to_vec<2>(b.center), b.radius, dp, add);
+        else
+          fill_ball_lattice<D>(to_vec<D>(b.center), b.radius, dp, add);
       } else {
         fill_ball_lattice<D>(to_vec<D>(b.center), b.radius, dp, add);
       }
@@ -161,8 +171,10 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
       ps.push_back(next_id++, Kind::wall, x, Vec<D>{}, spec.fluid.density, mass);
       out.initial_pressure.push_back(0.0);
     };
-    if (w.shape == WallShape::tank) fill_tank<D>(to_vec<D>(w.min), to_vec<D>(w.max), w.layers, dp, add);
-    else for_each_node<D>(to_vec<D>(w.min), to_vec<D>(w.max), dp, add);
+    if (w.shape == WallShape::tank)
+      fill_tank<D>(to_vec<D>(w.min), to_vec<D>(w.max), w.layers, dp, add);
+    else
+      for_each_node<D>(to_vec<D>(w.min), to_vec<D>(w.max), dp, add);
   }
   out.fluid_height = zmax > zmin ? zmax - zmin : 0.0;
   return out;

@@ -2,9 +2,12 @@
 // Fill conventions (documented in the case files):
 //  - box fluid blocks: lattice nodes min + k dp (both faces included when the length is a multiple
 //    of dp, GenCase style), so [dp, 1] x [dp, 2] at dp = 0.005 holds 200 x 400 particles;
-//  - circle / sphere blocks, fill = "lattice": cell centres centre + (k + 1/2) dp inside the radius;
-//  - circle, fill = "rings": concentric rings at radii (k + 1/2) dp, round(2 pi r / dp) particles each;
-//  - tank walls: `layers` rows of nodes outside the open-top box min..max (bottom on the min face of
+//  - circle / sphere blocks, fill = "lattice": cell centres centre + (k + 1/2) dp inside the
+//  radius;
+//  - circle, fill = "rings": concentric rings at radii (k + 1/2) dp, round(2 pi r / dp) particles
+//  each;
+//  - tank walls: `layers` rows of nodes outside the open-top box min..max (bottom on the min face
+//  of
 //    the vertical axis, sides on the other faces); box walls: a solid box of nodes.
 #pragma once
 

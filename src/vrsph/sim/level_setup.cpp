@@ -33,7 +33,6 @@ void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>
   }
 }
 
-
 // Parameters of one level: everything that depends on its dp; c0 is common to all levels.
 template <int D>
 SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0) {

@@ -59,7 +59,8 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
         "initial velocity (give eos.max_speed or eos.sound_speed)");
   }
   setup_.max_speed = spec.eos.max_speed.value_or(0.0);
-  setup_.c0 = spec.eos.sound_speed ? *spec.eos.sound_speed : spec.eos.sound_speed_factor * *spec.eos.max_speed;
+  setup_.c0 = spec.eos.sound_speed ? *spec.eos.sound_speed
+                                   : spec.eos.sound_speed_factor * *spec.eos.max_speed;
 
   std::uint64_t next_id = 0;
   std::vector<LevelLink<D>> links(layout.size());
@@ -73,7 +74,8 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
   }
   counters_.next_id = next_id;
-  const CouplingOptions opt{spec.vres_conserve_momentum, spec.numerics.surface_tension.zero_net_force,
+  const CouplingOptions opt{spec.vres_conserve_momentum,
+                            spec.numerics.surface_tension.zero_net_force,
                             spec.vres_buffer_fill_min};
   coupling_ = LevelCoupling<D>(std::move(links), opt);
 
@@ -93,7 +95,8 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
 
   // First step: the acoustic limit of a fluid at rest, with the viscous and capillary limits.
   dt_next_ = 1e300;
-  for (const Level<D>& L : levels_) dt_next_ = std::min(dt_next_, level_dt_at_start(L, setup_.c0).dt);
+  for (const Level<D>& L : levels_)
+    dt_next_ = std::min(dt_next_, level_dt_at_start(L, setup_.c0).dt);
 }
 
 template <int D>
@@ -278,13 +281,13 @@ void Simulation<D>::check_state(const Level<D>& L) const {
   if (i < ps.size()) {
     const bool is_finite = std::isfinite(ps.rho[i]) && std::isfinite(norm2(ps.vel[i])) &&
                            std::isfinite(norm2(ps.pos[i]));
-    throw InstabilityError(fmt::format(
-        "unstable at t = {:.6g} s, step {}: {} particle id {} at {} {} (check: {})", t_, step_,
-        kind_name(ps.kind[i]), ps.id[i], position_text<D>(ps.pos[i]),
-        is_finite ? fmt::format("has density {:.6g} kg/m^3 outside [{:.6g}, {:.6g}]", ps.rho[i],
-                                0.5 * rho0, 2.0 * rho0)
-                  : std::string("has a non-finite position, velocity or density"),
-        is_finite ? "density" : "finite"));
+    throw InstabilityError(
+        fmt::format("unstable at t = {:.6g} s, step {}: {} particle id {} at {} {} (check: {})", t_,
+                    step_, kind_name(ps.kind[i]), ps.id[i], position_text<D>(ps.pos[i]),
+                    is_finite ? fmt::format("has density {:.6g} kg/m^3 outside [{:.6g}, {:.6g}]",
+                                            ps.rho[i], 0.5 * rho0, 2.0 * rho0)
+                              : std::string("has a non-finite position, velocity or density"),
+                    is_finite ? "density" : "finite"));
   }
 }
 
@@ -303,8 +306,9 @@ void Simulation<D>::check_dt() const {
     for (std::size_t i = 0; i < q.size(); ++i) {
       if (q.kind[i] != Kind::fluid || norm(q.acc[i]) <= amax) continue;
       amax = norm(q.acc[i]);
-      culprit = fmt::format("largest acceleration {:.3g} m/s^2 at fluid particle id {} of level {} at {}",
-                            amax, q.id[i], l, position_text<D>(q.pos[i]));
+      culprit =
+          fmt::format("largest acceleration {:.3g} m/s^2 at fluid particle id {} of level {} at {}",
+                      amax, q.id[i], l, position_text<D>(q.pos[i]));
     }
   }
   throw InstabilityError(fmt::format(

@@ -33,15 +33,15 @@ struct RunCounters {
   std::uint64_t particle_steps = 0;  // sum over steps of particles stepped
   std::uint64_t pairs = 0;           // pair interactions within 2h, both stages
   std::array<std::uint64_t, 4> dt_limit_counts{};
-  std::uint64_t lost_fluid = 0;      // fluid particles that left the domain
-  double wall_seconds = 0.0;         // wall time spent stepping (resumed runs accumulate)
+  std::uint64_t lost_fluid = 0;  // fluid particles that left the domain
+  double wall_seconds = 0.0;     // wall time spent stepping (resumed runs accumulate)
   // Variable resolution: particles created at mass points, and deleted (left their level's
   // region, or no donor fluid around a buffer particle), with their masses.
   std::uint64_t created = 0;
   std::uint64_t deleted = 0;
   double created_mass = 0.0;
   double deleted_mass = 0.0;
-  std::uint64_t next_id = 0;         // id of the next created particle
+  std::uint64_t next_id = 0;  // id of the next created particle
 };
 
 // Wall-clock share per pass (seconds), for the benchmark profile.

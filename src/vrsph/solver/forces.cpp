@@ -112,8 +112,8 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceB
     s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
     return s;
   };
-  sweep_pairs<D, C::count, 5, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair,
-                           out.s, out.max_visc_dt);
+  sweep_pairs<D, C::count, 5, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+                                    pair, out.s, out.max_visc_dt);
 }
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
@@ -134,8 +134,8 @@ inline void wall_sweep(const SolverParams<D>& prm, const Self& me, const ForceBl
     s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
     return s;
   };
-  sweep_pairs<D, C::count, 5, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair,
-                           out.s, out.max_visc_dt);
+  sweep_pairs<D, C::count, 5, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+                                    pair, out.s, out.max_visc_dt);
 }
 
 // Per-thread scratch of the force pass and its statistics (ForceStats::merge across threads).
@@ -162,8 +162,7 @@ Vec<D> acceleration(const ForceSums& s) {
 
 template <int D, ViscosityModel VM, DiffusionModel DM>
 ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                      const LevelColumns<D>& cols, const Vec<D>* extra_acc,
-                      bool buffer_reaction) {
+                      const LevelColumns<D>& cols, const Vec<D>* extra_acc, bool buffer_reaction) {
   const auto& cells = grid.particle_cells();
   const auto src = force_sources(cols);
   const auto pad = force_pad<D>();
@@ -196,8 +195,8 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     acc.max_visc_dt = std::max(acc.max_visc_dt, s.max_visc_dt);
     acc.pairs += static_cast<std::uint64_t>(s.s[4]);
   };
-  const ForceAcc total =
-      exec::for_each_gather<ForceScratch<D>, ForceAcc>(static_cast<std::int64_t>(ps.size()), 512, body);
+  const ForceAcc total = exec::for_each_gather<ForceScratch<D>, ForceAcc>(
+      static_cast<std::int64_t>(ps.size()), 512, body);
   return {total.max_visc_dt, std::sqrt(total.max_acc2), total.pairs};
 }
 

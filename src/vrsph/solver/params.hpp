@@ -4,8 +4,8 @@
 
 #include "vrsph/core/kernel.hpp"
 #include "vrsph/core/vec.hpp"
-#include "vrsph/physics/eos.hpp"
 #include "vrsph/physics/density_diffusion.hpp"
+#include "vrsph/physics/eos.hpp"
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/physics/surface_tension.hpp"
 #include "vrsph/physics/viscosity.hpp"
@@ -33,7 +33,7 @@ struct SolverParams {
   ShiftingLevel shifting;
   SurfaceTensionParams surface_tension;
 
-  double dt_min = 0.0;    // 0.05 h / c0 (DualSPHysics CoefDtMin): below this the run is unstable
+  double dt_min = 0.0;  // 0.05 h / c0 (DualSPHysics CoefDtMin): below this the run is unstable
 };
 
 }  // namespace vrsph

@@ -105,14 +105,22 @@ DtChoice level_dt(const Level<D>& L, const ForceStats& s, double c0) {
   for (std::size_t i = 0; i < L.ps.size(); ++i) {
     if (L.ps.kind[i] != Kind::wall) vmax2 = std::max(vmax2, norm2(L.ps.vel[i]));
   }
-  const DtInputs in{L.prm.h,       L.prm.cfl, c0,         s.max_acc,     std::sqrt(vmax2),
-                    s.max_visc_dt, L.prm.viscosity.nu,  L.prm.eos.rho0, L.prm.sigma};
+  const DtInputs in{L.prm.h,
+                    L.prm.cfl,
+                    c0,
+                    s.max_acc,
+                    std::sqrt(vmax2),
+                    s.max_visc_dt,
+                    L.prm.viscosity.nu,
+                    L.prm.eos.rho0,
+                    L.prm.sigma};
   return choose_dt(in);
 }
 
 template <int D>
 DtChoice level_dt_at_start(const Level<D>& L, double c0) {
-  DtInputs in{L.prm.h, L.prm.cfl, c0, 0.0, 0.0, 0.0, L.prm.viscosity.nu, L.prm.eos.rho0, L.prm.sigma};
+  DtInputs in{L.prm.h,        L.prm.cfl,  c0, 0.0, 0.0, 0.0, L.prm.viscosity.nu,
+              L.prm.eos.rho0, L.prm.sigma};
   for (const auto& v : L.ps.vel) in.max_speed = std::max(in.max_speed, norm(v));
   return choose_dt(in);
 }

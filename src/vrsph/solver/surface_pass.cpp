@@ -41,12 +41,11 @@ void position_of(const LevelColumns<D>& c, std::size_t i, double xi[3]) {
   for (int d = 0; d < D; ++d) xi[d] = c.x[d][i];
 }
 
-
 // Pass 1 of particle i over its block (columns x, V): M in s0..s5 (xx, xy, yy, xz, yz, zz),
 // grad C in s6..s8, div r in s9, the Shepard sum in s10.
 template <int D>
-void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk, const double xi[3],
-                    double (&sum)[12]) {
+void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk,
+                    const double xi[3], double (&sum)[12]) {
   auto pair = [](const PairGeometry& g, const Neighbour<D + 1>& nb) {
     PairSums s;
     const double vol_j = nb[D];
@@ -65,8 +64,8 @@ void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk
     return s;
   };
   double unused = -1e300;
-  sweep_pairs<D, D + 1, 11, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum,
-                        unused);
+  sweep_pairs<D, D + 1, 11, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+                                   pair, sum, unused);
 }
 
 // M_i and grad C_i from the pass-1 slots.
@@ -140,8 +139,8 @@ void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const
       a.s0 = c * g.rx, a.s1 = c * g.ry, a.s2 = c * g.rz;
       return a;
     };
-    sweep_pairs<D, D + 2, 3, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s,
-                          unused);
+    sweep_pairs<D, D + 2, 3, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+                                    pair, s, unused);
     Vec<D> sum;
     for (int d = 0; d < D; ++d) sum[d] = s[d];
     sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i,
@@ -170,8 +169,8 @@ CurvatureSums curvature_particle(const SolverParams<D>& prm, const CandidateBloc
     return s;
   };
   double s[12] = {}, unused = -1e300;
-  sweep_pairs<D, 2 * D + 1, 3, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s,
-                            unused);
+  sweep_pairs<D, 2 * D + 1, 3, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+                                      pair, s, unused);
   return CurvatureSums{s[0], s[1], s[2]};
 }
 
@@ -221,16 +220,30 @@ void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
 }
 
 template struct SurfaceFields<2>;
-template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, SurfaceFields<2>&);
-template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, const LevelColumns<2>&, SurfaceFields<2>&);
-template void surface_normals<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, const LevelColumns<2>&, SurfaceFields<2>&);
-template void surface_curvature_force<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, const LevelColumns<2>&, SurfaceFields<2>&);
-template void surface_tension_force<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&, const LevelColumns<2>&, SurfaceFields<2>&);
+template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&,
+                              SurfaceFields<2>&);
+template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&,
+                              const LevelColumns<2>&, SurfaceFields<2>&);
+template void surface_normals<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&,
+                                 const LevelColumns<2>&, SurfaceFields<2>&);
+template void surface_curvature_force<2>(const SolverParams<2>&, const ParticleSet<2>&,
+                                         const CellGrid<2>&, const LevelColumns<2>&,
+                                         SurfaceFields<2>&);
+template void surface_tension_force<2>(const SolverParams<2>&, const ParticleSet<2>&,
+                                       const CellGrid<2>&, const LevelColumns<2>&,
+                                       SurfaceFields<2>&);
 template struct SurfaceFields<3>;
-template void surface_sums<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, SurfaceFields<3>&);
-template void surface_sums<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, const LevelColumns<3>&, SurfaceFields<3>&);
-template void surface_normals<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, const LevelColumns<3>&, SurfaceFields<3>&);
-template void surface_curvature_force<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, const LevelColumns<3>&, SurfaceFields<3>&);
-template void surface_tension_force<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&, const LevelColumns<3>&, SurfaceFields<3>&);
+template void surface_sums<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&,
+                              SurfaceFields<3>&);
+template void surface_sums<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&,
+                              const LevelColumns<3>&, SurfaceFields<3>&);
+template void surface_normals<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&,
+                                 const LevelColumns<3>&, SurfaceFields<3>&);
+template void surface_curvature_force<3>(const SolverParams<3>&, const ParticleSet<3>&,
+                                         const CellGrid<3>&, const LevelColumns<3>&,
+                                         SurfaceFields<3>&);
+template void surface_tension_force<3>(const SolverParams<3>&, const ParticleSet<3>&,
+                                       const CellGrid<3>&, const LevelColumns<3>&,
+                                       SurfaceFields<3>&);
 
 }  // namespace vrsph

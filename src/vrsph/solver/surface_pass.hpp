@@ -17,14 +17,14 @@ namespace vrsph {
 
 template <int D>
 struct SurfaceFields {
-  std::vector<double> lambda;    // smallest eigenvalue of M_i
-  std::vector<Mat<D>> l_corr;    // L_i = M_i^-1 (or I)
-  std::vector<Vec<D>> grad_c;    // sum_j V_j grad_i W_ij
-  std::vector<double> div_r;     // -sum_j V_j r_ij . grad_i W_ij
-  std::vector<double> shepard;   // sum_j V_j W_ij, self included
-  std::vector<Vec<D>> normal;    // unit outward normal, or 0
-  std::vector<double> curvature; // kappa_i
-  std::vector<Vec<D>> acc_st;    // surface-tension acceleration
+  std::vector<double> lambda;     // smallest eigenvalue of M_i
+  std::vector<Mat<D>> l_corr;     // L_i = M_i^-1 (or I)
+  std::vector<Vec<D>> grad_c;     // sum_j V_j grad_i W_ij
+  std::vector<double> div_r;      // -sum_j V_j r_ij . grad_i W_ij
+  std::vector<double> shepard;    // sum_j V_j W_ij, self included
+  std::vector<Vec<D>> normal;     // unit outward normal, or 0
+  std::vector<double> curvature;  // kappa_i
+  std::vector<Vec<D>> acc_st;     // surface-tension acceleration
 
   // The columns the passes read when called without a level's packed columns (filled by the
   // four-argument surface_sums), and the normal as columns for the curvature pass's blocks.

@@ -17,7 +17,7 @@ namespace vrsph {
 
 enum class DtLimit : int { force = 0, acoustic = 1, viscous = 2, capillary = 3 };
 inline constexpr std::array<std::string_view, 4> kDtLimitNames = {"force", "acoustic", "viscous",
-                                                                   "capillary"};
+                                                                  "capillary"};
 
 struct DtChoice {
   double dt = 0.0;
@@ -28,10 +28,10 @@ struct DtInputs {
   double h = 0.0;
   double cfl = 0.2;
   double c0 = 0.0;
-  double max_acc = 0.0;       // max |a| over fluid, gravity excluded
-  double max_speed = 0.0;     // max |v| over fluid
-  double max_visc_dt = 0.0;   // max over pairs of v_ij.r_ij/(r^2+eta^2)
-  double nu = 0.0;            // 0 when laminar viscosity is off
+  double max_acc = 0.0;      // max |a| over fluid, gravity excluded
+  double max_speed = 0.0;    // max |v| over fluid
+  double max_visc_dt = 0.0;  // max over pairs of v_ij.r_ij/(r^2+eta^2)
+  double nu = 0.0;           // 0 when laminar viscosity is off
   double rho0 = 1000.0;
   double sigma = 0.0;
 };
@@ -43,8 +43,9 @@ inline DtChoice choose_dt(const DtInputs& in) {
       in.h / (std::max(in.c0, 10.0 * in.max_speed) + in.h * std::max(0.0, in.max_visc_dt));
   const double dt_visc = in.nu > 0.0 ? 0.125 * in.h * in.h / in.nu : inf;
   const double dt_st =
-      in.sigma > 0.0 ? 0.25 * std::sqrt(in.rho0 * in.h * in.h * in.h / (2.0 * std::numbers::pi * in.sigma))
-                     : inf;
+      in.sigma > 0.0
+          ? 0.25 * std::sqrt(in.rho0 * in.h * in.h * in.h / (2.0 * std::numbers::pi * in.sigma))
+          : inf;
   DtChoice c{in.cfl * dt_f, DtLimit::force};
   if (in.cfl * dt_cv <= c.dt) c = {in.cfl * dt_cv, DtLimit::acoustic};
   if (dt_visc < c.dt) c = {dt_visc, DtLimit::viscous};

@@ -6,7 +6,7 @@
 namespace vrsph {
 namespace {
 
-constexpr double kMinSpacing = 0.5;   // x dp: no particle is created closer than this to another
+constexpr double kMinSpacing = 0.5;  // x dp: no particle is created closer than this to another
 
 // Mass the donor flow carries across a face element in dt: -rho (u . n) dA dt (n out of the
 // buffer, so inflow into the buffer is positive). Once the stored mass is negative only
@@ -86,8 +86,12 @@ void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.kind[i] == Kind::wall) continue;
     switch (link.region.classify(ps.pos[i]).zone) {
-      case Zone::fluid: ps.kind[i] = Kind::fluid; break;
-      case Zone::buffer: ps.kind[i] = Kind::buffer; break;
+      case Zone::fluid:
+        ps.kind[i] = Kind::fluid;
+        break;
+      case Zone::buffer:
+        ps.kind[i] = Kind::buffer;
+        break;
       case Zone::outside:
         keep[i] = 0;
         ++removed;
@@ -131,8 +135,8 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
       ps.rho[i] = s.rho;
       ps.vel[i] = s.vel;
     });
-    const std::int64_t removed =
-        exec::count_sum(n, [&](std::int64_t i) { return keep[static_cast<std::size_t>(i)] ? 0 : 1; });
+    const std::int64_t removed = exec::count_sum(
+        n, [&](std::int64_t i) { return keep[static_cast<std::size_t>(i)] ? 0 : 1; });
     if (removed == 0) continue;
     for (std::size_t i = 0; i < ps.size(); ++i)
       if (!keep[i]) tally.deleted_mass += ps.mass[i];
@@ -142,10 +146,10 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
   return removed_all;
 }
 
-template void accumulate_and_create<2>(std::vector<Level<2>>&, std::vector<LevelLink<2>>&,
-                                       double, std::uint64_t&, CouplingTally&);
-template void accumulate_and_create<3>(std::vector<Level<3>>&, std::vector<LevelLink<3>>&,
-                                       double, std::uint64_t&, CouplingTally&);
+template void accumulate_and_create<2>(std::vector<Level<2>>&, std::vector<LevelLink<2>>&, double,
+                                       std::uint64_t&, CouplingTally&);
+template void accumulate_and_create<3>(std::vector<Level<3>>&, std::vector<LevelLink<3>>&, double,
+                                       std::uint64_t&, CouplingTally&);
 template void update_kinds<2>(Level<2>&, const LevelLink<2>&, CouplingTally&);
 template void update_kinds<3>(Level<3>&, const LevelLink<3>&, CouplingTally&);
 template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&,

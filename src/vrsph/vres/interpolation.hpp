@@ -49,19 +49,19 @@ namespace vrsph {
 
 template <int D>
 struct InterpolatedState {
-  double rho = 0.0;        // kg/m^3
-  Vec<D> vel{};            // m/s
-  double shepard = 0.0;    // sum_j V_j W(x - x_j): donor support; < 0.05 means no fluid here
-  double div_r = 0.0;      // -sum_j V_j (x - x_j) . grad W: about D inside the fluid, about D/2
-                           // on a flat free surface (the free-surface test)
+  double rho = 0.0;            // kg/m^3
+  Vec<D> vel{};                // m/s
+  double shepard = 0.0;        // sum_j V_j W(x - x_j): donor support; < 0.05 means no fluid here
+  double div_r = 0.0;          // -sum_j V_j (x - x_j) . grad W: about D inside the fluid, about D/2
+                               // on a flat free surface (the free-surface test)
   double shepard_walls = 0.0;  // sum_j V_j W(x - x_j) over the donor level's wall particles
   double shepard_buffer = 0.0;  // the same over the donor level's buffer particles
   bool corrected = false;  // true: first-order corrected; false: Shepard fallback (or no support)
   double cond = 0.0;       // dimensionless cond_inf(A) (infinity: singular; 0: no support)
 };
 
-inline constexpr double kVresShepardMin = 0.05;   // below: no fluid at the point
-inline constexpr double kVresCondLimit = 100.0;   // above: Shepard fallback
+inline constexpr double kVresShepardMin = 0.05;  // below: no fluid at the point
+inline constexpr double kVresCondLimit = 100.0;  // above: Shepard fallback
 
 // Smoothed fill of the donor level at a point: sum_j V_j W over all its particles (fluid, buffer
 // and walls; next to the interface the donor's buffer completes the support, where its fluid alone

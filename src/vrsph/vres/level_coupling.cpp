@@ -27,8 +27,8 @@ constexpr double kBufferNormalReach = 2.0;
 // level has the other level's profile, and averaged normals are not consistent enough with the
 // level's own for the curvature, which differences neighbouring normals).
 // The reaches (1h for lambda, 2h for normals) were chosen by measurement on the 2D VR droplet
-// (docs/validation.md, "Figures formerly in code comments"), not derived. An averaged normal keeps its
-// direction where most of the donor weight has a normal (|average| >= 1/2), and is zero
+// (docs/validation.md, "Figures formerly in code comments"), not derived. An averaged normal keeps
+// its direction where most of the donor weight has a normal (|average| >= 1/2), and is zero
 // otherwise.
 template <int D>
 template <class T>

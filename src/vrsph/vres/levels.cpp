@@ -45,8 +45,9 @@ std::vector<LevelLayout<D>> make_level_layout(const CaseSpec& spec) {
         if (p < 0 || volume(bj) < volume(box_of<D>(refs[static_cast<std::size_t>(p)])))
           parent_box[i] = static_cast<int>(j);
       } else if (bi.overlaps(bj) && !bi.contains_box(bj)) {
-        throw refinement_error(i, "min", fmt::format(
-            "box overlaps refinement.{} without containing it or lying inside it", j));
+        throw refinement_error(
+            i, "min",
+            fmt::format("box overlaps refinement.{} without containing it or lying inside it", j));
       } else if (bi.contains_box(bj) && bj.contains_box(bi)) {
         throw refinement_error(i, "min", fmt::format("box repeats refinement.{}", j));
       }
@@ -84,16 +85,19 @@ std::vector<LevelLayout<D>> make_level_layout(const CaseSpec& spec) {
     // the parent's shell must fit inside the box.
     const Box<D> shell = L.region.box.grown(L.region.width + 2.0 * L.h);
     if (P.region.has_box && !P.region.box.contains_box(shell)) {
-      throw refinement_error(i, "min", fmt::format(
-          "box with its buffer ({:g} m) does not fit inside its parent box", L.region.width + 2 * L.h));
+      throw refinement_error(
+          i, "min",
+          fmt::format("box with its buffer ({:g} m) does not fit inside its parent box",
+                      L.region.width + 2 * L.h));
     }
     for (int a = 0; a < D; ++a) {
       const double side = L.region.box.hi[a] - L.region.box.lo[a];
       if (side < 2.0 * w_parent + 2.0 * P.h) {
-        throw refinement_error(i, "max", fmt::format(
-            "box side {:g} m along axis {} is smaller than the parent's two buffers and support "
-            "({:g} m): enlarge the box or lower buffer_width",
-            side, a, 2.0 * w_parent + 2.0 * P.h));
+        throw refinement_error(i, "max",
+                               fmt::format("box side {:g} m along axis {} is smaller than the "
+                                           "parent's two buffers and support "
+                                           "({:g} m): enlarge the box or lower buffer_width",
+                                           side, a, 2.0 * w_parent + 2.0 * P.h));
       }
     }
   }
@@ -105,8 +109,10 @@ std::vector<LevelLayout<D>> make_level_layout(const CaseSpec& spec) {
       const auto& Lj = levels[static_cast<std::size_t>(level_of_box[j])];
       if (Li.region.box.grown(Li.region.width + 2 * Li.h)
               .overlaps(Lj.region.box.grown(Lj.region.width + 2 * Lj.h)))
-        throw refinement_error(j, "min", fmt::format(
-            "box and its buffer come within 2h of refinement.{} (same parent level)", i));
+        throw refinement_error(
+            j, "min",
+            fmt::format("box and its buffer come within 2h of refinement.{} (same parent level)",
+                        i));
     }
   return levels;
 }

@@ -71,8 +71,16 @@ struct Box {
     double best = 1e300, sign = 1.0;
     for (int k = 0; k < D; ++k) {
       const double dl = std::abs(x[k] - lo[k]), dh = std::abs(x[k] - hi[k]);
-      if (dl < best) { best = dl; best_k = k; sign = -1.0; }
-      if (dh < best) { best = dh; best_k = k; sign = 1.0; }
+      if (dl < best) {
+        best = dl;
+        best_k = k;
+        sign = -1.0;
+      }
+      if (dh < best) {
+        best = dh;
+        best_k = k;
+        sign = 1.0;
+      }
     }
     Vec<D> n{};
     n[best_k] = sign;
@@ -85,12 +93,12 @@ enum class Zone : std::uint8_t { fluid = 0, buffer = 1, outside = 2 };
 template <int D>
 struct ZoneInfo {
   Zone zone = Zone::fluid;
-  int donor = -1;      // buffer: level whose fluid supplies rho and v
+  int donor = -1;        // buffer: level whose fluid supplies rho and v
   Vec<D> face_normal{};  // buffer: unit normal of the nearest interface face (shifting keeps
                          // only the tangential part)
   double depth = 0.0;    // buffer: distance from the level's fluid region into the shell; the
-                         // kernel support (2h) lies inside fluid and shell while depth <= width - 2h
-  double width = 0.0;    // buffer: the shell's thickness
+                       // kernel support (2h) lies inside fluid and shell while depth <= width - 2h
+  double width = 0.0;  // buffer: the shell's thickness
 };
 
 // One point on the outer face of a buffer (the face away from its level's fluid) where the mass
@@ -98,10 +106,10 @@ struct ZoneInfo {
 template <int D>
 struct MassPoint {
   Vec<D> x{};
-  Vec<D> n{};          // unit normal out of the buffer: inflow into the buffer has u . n < 0
-  double area = 0.0;   // face area (2D: length) the point stands for, about dp^(D-1)
-  int donor = -1;      // level whose fluid flows across the face
-  double mass = 0.0;   // accumulated mass, kg
+  Vec<D> n{};         // unit normal out of the buffer: inflow into the buffer has u . n < 0
+  double area = 0.0;  // face area (2D: length) the point stands for, about dp^(D-1)
+  int donor = -1;     // level whose fluid flows across the face
+  double mass = 0.0;  // accumulated mass, kg
 };
 
 // What one level owns. A child level has an own box (its refinement box); any level may have
@@ -115,8 +123,8 @@ struct LevelRegion {
   };
   int parent = -1;
   bool has_box = false;
-  Box<D> box;             // own refinement box (has_box)
-  double width = 0.0;     // own outer buffer shell: buffer_width x h (this level)
+  Box<D> box;          // own refinement box (has_box)
+  double width = 0.0;  // own outer buffer shell: buffer_width x h (this level)
   std::vector<Child> children;
 
   ZoneInfo<D> classify(const Vec<D>& x) const {
