@@ -29,28 +29,22 @@ double now_seconds() {
   return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
 }
 
-}  // namespace
-
+// Speed of sound (common to all levels): given, or sound_speed_factor x max_speed, with
+// max_speed = sqrt(g H) for gravity cases when not given (PHYSICS.md
+// section 2). H and initial velocities come from the level-0 fill. Fills spec.eos.max_speed when
+// it was derived, so that the resolved case records it.
 template <int D>
-Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
-  const std::vector<LevelLayout<D>> layout = make_level_layout<D>(spec);
-  levels_.resize(layout.size());
-
-  // Speed of sound (common to all levels): given, or sound_speed_factor x max_speed, with
-  // max_speed = sqrt(g H) for gravity cases when not given (PHYSICS.md section 2). H and initial
-  // velocities come from the level-0 fill, which level 0 then takes its particles from.
-  InitialSet<D> init0 = level_fill<D>(spec, spec.dp);
-  {
-    setup_.fluid_height = init0.fluid_height;
-    const double g = norm(to_vec<D>(spec.fluid.gravity));
-    if (!spec.eos.max_speed) {
-      if (g > 0.0 && setup_.fluid_height > 0.0) {
-        spec.eos.max_speed = std::sqrt(g * setup_.fluid_height);
-      } else {
-        double vmax = 0.0;
-        for (const auto& v : init0.particles.vel) vmax = std::max(vmax, norm(v));
-        if (vmax > 0.0) spec.eos.max_speed = vmax;
-      }
+Setup resolve_setup(CaseSpec& spec, const InitialSet<D>& init0) {
+  Setup setup;
+  setup.fluid_height = init0.fluid_height;
+  const double g = norm(to_vec<D>(spec.fluid.gravity));
+  if (!spec.eos.max_speed) {
+    if (g > 0.0 && setup.fluid_height > 0.0) {
+      spec.eos.max_speed = std::sqrt(g * setup.fluid_height);
+    } else {
+      double vmax = 0.0;
+      for (const auto& v : init0.particles.vel) vmax = std::max(vmax, norm(v));
+      if (vmax > 0.0) spec.eos.max_speed = vmax;
     }
   }
   if (!spec.eos.sound_speed && !spec.eos.max_speed) {
@@ -58,9 +52,21 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
         "eos.max_speed: missing: needed to set the speed of sound when there is no gravity and no "
         "initial velocity (give eos.max_speed or eos.sound_speed)");
   }
-  setup_.max_speed = spec.eos.max_speed.value_or(0.0);
-  setup_.c0 = spec.eos.sound_speed ? *spec.eos.sound_speed
-                                   : spec.eos.sound_speed_factor * *spec.eos.max_speed;
+  setup.max_speed = spec.eos.max_speed.value_or(0.0);
+  setup.c0 = spec.eos.sound_speed ? *spec.eos.sound_speed
+                                  : spec.eos.sound_speed_factor * *spec.eos.max_speed;
+  return setup;
+}
+
+}  // namespace
+
+template <int D>
+Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
+  const std::vector<LevelLayout<D>> layout = make_level_layout<D>(spec);
+  levels_.resize(layout.size());
+
+  InitialSet<D> init0 = level_fill<D>(spec, spec.dp);
+  setup_ = resolve_setup<D>(spec, init0);
 
   std::uint64_t next_id = 0;
   std::vector<LevelLink<D>> links(layout.size());
