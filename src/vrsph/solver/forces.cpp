@@ -21,6 +21,7 @@ struct ForceCol {
 };
 template <int D>
 using ForceBlock = CandidateBlock<ForceCol<D>::count>;
+static_assert(kBlockPad % kSweepLanes == 0, "blocks must fill whole sweep lanes");
 
 template <int D>
 std::array<const double*, ForceCol<D>::count> force_sources(const LevelColumns<D>& c) {
