@@ -43,6 +43,45 @@ struct Neighbour {
   double operator[](int k) const { return c[k]; }
 };
 
+// Candidate j's columns, one load per column written out (a loop over k here could stay a loop
+// inside the vectorised one).
+template <int K>
+[[gnu::always_inline]] inline Neighbour<K> load_neighbour(const double* const (&col)[12],
+                                                          std::ptrdiff_t j) {
+  Neighbour<K> nb;
+  if constexpr (K > 0) nb.c[0] = col[0][j];
+  if constexpr (K > 1) nb.c[1] = col[1][j];
+  if constexpr (K > 2) nb.c[2] = col[2][j];
+  if constexpr (K > 3) nb.c[3] = col[3][j];
+  if constexpr (K > 4) nb.c[4] = col[4][j];
+  if constexpr (K > 5) nb.c[5] = col[5][j];
+  if constexpr (K > 6) nb.c[6] = col[6][j];
+  if constexpr (K > 7) nb.c[7] = col[7][j];
+  if constexpr (K > 8) nb.c[8] = col[8][j];
+  if constexpr (K > 9) nb.c[9] = col[9][j];
+  if constexpr (K > 10) nb.c[10] = col[10][j];
+  if constexpr (K > 11) nb.c[11] = col[11][j];
+  return nb;
+}
+
+// Adds the first NS slots of t into lane l of the sums.
+template <int NS, int L>
+[[gnu::always_inline]] inline void add_to_lane(double (&acc)[NS > 0 ? NS : 1][L], int l,
+                                               const PairSums& t) {
+  if constexpr (NS > 0) acc[0][l] += t.s0;
+  if constexpr (NS > 1) acc[1][l] += t.s1;
+  if constexpr (NS > 2) acc[2][l] += t.s2;
+  if constexpr (NS > 3) acc[3][l] += t.s3;
+  if constexpr (NS > 4) acc[4][l] += t.s4;
+  if constexpr (NS > 5) acc[5][l] += t.s5;
+  if constexpr (NS > 6) acc[6][l] += t.s6;
+  if constexpr (NS > 7) acc[7][l] += t.s7;
+  if constexpr (NS > 8) acc[8][l] += t.s8;
+  if constexpr (NS > 9) acc[9][l] += t.s9;
+  if constexpr (NS > 10) acc[10][l] += t.s10;
+  if constexpr (NS > 11) acc[11][l] += t.s11;
+}
+
 // Lanes of the sweep: candidate j adds into lane j % kSweepLanes of every sum, and the lanes are
 // added in order at the end. The order of every sum is fixed by this constant, not by the vector
 // width, so AVX2, AVX-512 and scalar builds give the same bits. Blocks are padded to a multiple
@@ -76,19 +115,7 @@ template <int D, int K, int NS, bool kMax, class Body>
   for (std::ptrdiff_t j0 = 0; j0 < len; j0 += L) {
     for (int l = 0; l < L; ++l) {
       const std::ptrdiff_t j = j0 + l;
-      Neighbour<K> nb;
-      if constexpr (K > 0) nb.c[0] = col[0][j];
-      if constexpr (K > 1) nb.c[1] = col[1][j];
-      if constexpr (K > 2) nb.c[2] = col[2][j];
-      if constexpr (K > 3) nb.c[3] = col[3][j];
-      if constexpr (K > 4) nb.c[4] = col[4][j];
-      if constexpr (K > 5) nb.c[5] = col[5][j];
-      if constexpr (K > 6) nb.c[6] = col[6][j];
-      if constexpr (K > 7) nb.c[7] = col[7][j];
-      if constexpr (K > 8) nb.c[8] = col[8][j];
-      if constexpr (K > 9) nb.c[9] = col[9][j];
-      if constexpr (K > 10) nb.c[10] = col[10][j];
-      if constexpr (K > 11) nb.c[11] = col[11][j];
+      const Neighbour<K> nb = load_neighbour<K>(col, j);
       PairGeometry g;
       g.rx = xi[0] - nb.c[0];
       g.ry = xi[1] - nb.c[1];
@@ -103,18 +130,7 @@ template <int D, int K, int NS, bool kMax, class Body>
       g.f = in ? f : 0.0;
       g.w = in ? w : 0.0;
       const PairSums t = body(g, nb);
-      if constexpr (NS > 0) acc[0][l] += t.s0;
-      if constexpr (NS > 1) acc[1][l] += t.s1;
-      if constexpr (NS > 2) acc[2][l] += t.s2;
-      if constexpr (NS > 3) acc[3][l] += t.s3;
-      if constexpr (NS > 4) acc[4][l] += t.s4;
-      if constexpr (NS > 5) acc[5][l] += t.s5;
-      if constexpr (NS > 6) acc[6][l] += t.s6;
-      if constexpr (NS > 7) acc[7][l] += t.s7;
-      if constexpr (NS > 8) acc[8][l] += t.s8;
-      if constexpr (NS > 9) acc[9][l] += t.s9;
-      if constexpr (NS > 10) acc[10][l] += t.s10;
-      if constexpr (NS > 11) acc[11][l] += t.s11;
+      add_to_lane<NS>(acc, l, t);
       if constexpr (kMax) mx[l] = mx[l] < t.max ? t.max : mx[l];
     }
   }

@@ -29,11 +29,13 @@ std::invalid_argument refinement_error(std::size_t i, const char* key, const std
 
 }  // namespace
 
+namespace {
+
+// Parent box of each box: the smallest other box containing it (-1: level 0). Refuses boxes that
+// overlap without nesting, and repeated boxes.
 template <int D>
-std::vector<LevelLayout<D>> make_level_layout(const CaseSpec& spec) {
-  const auto& refs = spec.refinements;
+std::vector<int> parent_boxes(const std::vector<RefinementBox>& refs) {
   const std::size_t nb = refs.size();
-  // Parent box of each box: the smallest other box containing it (-1: level 0).
   std::vector<int> parent_box(nb, -1);
   for (std::size_t i = 0; i < nb; ++i) {
     const Box<D> bi = box_of<D>(refs[i]);
@@ -53,17 +55,66 @@ std::vector<LevelLayout<D>> make_level_layout(const CaseSpec& spec) {
       }
     }
   }
-  // Depth-first order so parents come first; level index of each box.
+  return parent_box;
+}
+
+// Level index of each box (1, 2, ...): depth-first order, so parents come first.
+std::vector<int> box_levels(const std::vector<int>& parent_box, std::vector<std::size_t>& order) {
+  const std::size_t nb = parent_box.size();
   std::vector<int> depth(nb, 0);
   for (std::size_t i = 0; i < nb; ++i)
     for (int p = parent_box[i]; p >= 0; p = parent_box[static_cast<std::size_t>(p)]) ++depth[i];
-  std::vector<std::size_t> order(nb);
+  order.resize(nb);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return depth[a] < depth[b]; });
   std::vector<int> level_of_box(nb);
   for (std::size_t k = 0; k < nb; ++k) level_of_box[order[k]] = static_cast<int>(k) + 1;
+  return level_of_box;
+}
 
+// Child level L of parent P from box i: dp, h, region, and the parent's record of the child.
+// The child's shell and the kernel support around it must lie in the parent's fluid, and the
+// parent's shell must fit inside the box.
+template <int D>
+void add_child_level(const CaseSpec& spec, std::size_t i, int lv, int pl, LevelLayout<D>& L,
+                     LevelLayout<D>& P) {
+  const RefinementBox& ref = spec.refinements[i];
+  L.dp = P.dp / ref.dp_ratio;
+  L.h = spec.h_over_dp * L.dp;
+  L.region.parent = pl;
+  L.region.has_box = true;
+  L.region.box = box_of<D>(ref);
+  L.region.width = ref.buffer_width * L.h;
+  const double w_parent = ref.buffer_width * P.h;
+  P.region.children.push_back({lv, L.region.box, w_parent});
+  const Box<D> shell = L.region.box.grown(L.region.width + 2.0 * L.h);
+  if (P.region.has_box && !P.region.box.contains_box(shell)) {
+    throw refinement_error(i, "min",
+                           fmt::format("box with its buffer ({:g} m) does not fit inside its "
+                                       "parent box",
+                                       L.region.width + 2 * L.h));
+  }
+  for (int a = 0; a < D; ++a) {
+    const double side = L.region.box.hi[a] - L.region.box.lo[a];
+    if (side < 2.0 * w_parent + 2.0 * P.h) {
+      throw refinement_error(i, "max",
+                             fmt::format("box side {:g} m along axis {} is smaller than the "
+                                         "parent's two buffers and support "
+                                         "({:g} m): enlarge the box or lower buffer_width",
+                                         side, a, 2.0 * w_parent + 2.0 * P.h));
+    }
+  }
+}
+
+}  // namespace
+
+template <int D>
+std::vector<LevelLayout<D>> make_level_layout(const CaseSpec& spec) {
+  const std::size_t nb = spec.refinements.size();
+  const std::vector<int> parent_box = parent_boxes<D>(spec.refinements);
+  std::vector<std::size_t> order;
+  const std::vector<int> level_of_box = box_levels(parent_box, order);
   std::vector<LevelLayout<D>> levels(nb + 1);
   levels[0].dp = spec.dp;
   levels[0].h = spec.h_over_dp * spec.dp;
@@ -71,35 +122,8 @@ std::vector<LevelLayout<D>> make_level_layout(const CaseSpec& spec) {
     const std::size_t i = order[k];
     const int lv = level_of_box[i];
     const int pl = parent_box[i] < 0 ? 0 : level_of_box[static_cast<std::size_t>(parent_box[i])];
-    LevelLayout<D>& L = levels[static_cast<std::size_t>(lv)];
-    LevelLayout<D>& P = levels[static_cast<std::size_t>(pl)];
-    L.dp = P.dp / refs[i].dp_ratio;
-    L.h = spec.h_over_dp * L.dp;
-    L.region.parent = pl;
-    L.region.has_box = true;
-    L.region.box = box_of<D>(refs[i]);
-    L.region.width = refs[i].buffer_width * L.h;
-    const double w_parent = refs[i].buffer_width * P.h;
-    P.region.children.push_back({lv, L.region.box, w_parent});
-    // The child's shell and the kernel support around it must lie in the parent's fluid, and
-    // the parent's shell must fit inside the box.
-    const Box<D> shell = L.region.box.grown(L.region.width + 2.0 * L.h);
-    if (P.region.has_box && !P.region.box.contains_box(shell)) {
-      throw refinement_error(
-          i, "min",
-          fmt::format("box with its buffer ({:g} m) does not fit inside its parent box",
-                      L.region.width + 2 * L.h));
-    }
-    for (int a = 0; a < D; ++a) {
-      const double side = L.region.box.hi[a] - L.region.box.lo[a];
-      if (side < 2.0 * w_parent + 2.0 * P.h) {
-        throw refinement_error(i, "max",
-                               fmt::format("box side {:g} m along axis {} is smaller than the "
-                                           "parent's two buffers and support "
-                                           "({:g} m): enlarge the box or lower buffer_width",
-                                           side, a, 2.0 * w_parent + 2.0 * P.h));
-      }
-    }
+    add_child_level<D>(spec, i, lv, pl, levels[static_cast<std::size_t>(lv)],
+                       levels[static_cast<std::size_t>(pl)]);
   }
   // Sibling boxes: their shells (with support) must not meet.
   for (std::size_t i = 0; i < nb; ++i)
