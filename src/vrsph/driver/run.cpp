@@ -79,6 +79,28 @@ void write_refinement_boxes(const Simulation<D>& sim, const std::filesystem::pat
   write_boxes_vtp(path, boxes, D);
 }
 
+// The start and end lines of a run (not with --quiet).
+template <int D>
+void print_start(const CaseSpec& spec, const Simulation<D>& sim, const RunOptions& opt,
+                 int threads) {
+  fmt::print(
+      "vrsph: {} ({}D): {} fluid + {} wall particles, dp = {:g} m, h = {:g} m, c0 = {:.4g} m/s, "
+      "{} thread(s), output in {}{}\n",
+      spec.name, D, sim.count(Kind::fluid), sim.count(Kind::wall), spec.dp, sim.params().h,
+      sim.setup().c0, threads, opt.out_dir.string(),
+      opt.resume ? fmt::format(" (resumed at t = {:g} s)", sim.time()) : "");
+  std::fflush(stdout);
+}
+
+template <int D>
+void print_end(const Simulation<D>& sim, double wall) {
+  const RunCounters& c = sim.counters();
+  fmt::print(
+      "vrsph: done: t = {:g} s in {} steps, {:.1f} s wall, {:.3g} M particle-steps/s, "
+      "{:.3g} M pair interactions/s\n",
+      sim.time(), sim.step_count(), wall, c.particle_steps / wall / 1e6, c.pairs / wall / 1e6);
+}
+
 template <int D>
 int run_impl(CaseSpec& spec, const RunOptions& opt) {
   Simulation<D> sim(spec, opt.cells_per_support);  // fills spec.max_speed when derived
@@ -98,15 +120,7 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
   if (sim.level_count() > 1) write_refinement_boxes(sim, opt.out_dir / "refinement_boxes.vtp");
   RunOutputs<D> out(spec, opt.out_dir, !opt.resume, sim.time());
   const int threads = exec::thread_count();
-  if (!opt.quiet) {
-    fmt::print(
-        "vrsph: {} ({}D): {} fluid + {} wall particles, dp = {:g} m, h = {:g} m, c0 = {:.4g} m/s, "
-        "{} thread(s), output in {}{}\n",
-        spec.name, D, sim.count(Kind::fluid), sim.count(Kind::wall), spec.dp, sim.params().h,
-        sim.setup().c0, threads, opt.out_dir.string(),
-        opt.resume ? fmt::format(" (resumed at t = {:g} s)", sim.time()) : "");
-    std::fflush(stdout);
-  }
+  if (!opt.quiet) print_start(spec, sim, opt, threads);
   const auto t0 = std::chrono::steady_clock::now();
   const double wall_before = sim.counters().wall_seconds;
   if (!opt.resume) {
@@ -142,13 +156,7 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
                opt.out_dir.string());
     return kExitUnstable;
   }
-  if (!opt.quiet) {
-    const RunCounters& c = sim.counters();
-    fmt::print(
-        "vrsph: done: t = {:g} s in {} steps, {:.1f} s wall, {:.3g} M particle-steps/s, "
-        "{:.3g} M pair interactions/s\n",
-        sim.time(), sim.step_count(), wall, c.particle_steps / wall / 1e6, c.pairs / wall / 1e6);
-  }
+  if (!opt.quiet) print_end(sim, wall);
   return kExitOk;
 }
 
