@@ -1,0 +1,229 @@
+// The files of a `vrsph run` as a user meets them: every contract file, the series with the
+// Laplace error, the resolved case, 3D columns, --quiet.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli_cases.hpp"
+#include "cli_util.hpp"
+
+namespace {
+
+using namespace vrsph_cli;
+using namespace vrsph_cli_cases;
+
+// ---------------------------------------------------------------------------------------------
+// A tiny run writes every file of the contract.
+
+double num(const std::string& s) { return std::stod(s); }
+
+TEST(CliRun, WritesEveryContractFile) {
+  TempDir dir;
+  // The dam break with a pressure line along the bottom of the column.
+  dir.write("case.toml", read_text(dam_break_2d()) + R"(
+[[output.line]]
+name = "bottom"
+from = [0.0, 0.05]
+to = [1.0, 0.05]
+)");
+  const fs::path out = dir / "run";
+  const double dp = 0.04, end = 0.01;
+  const CmdResult r = dir.run({"run", "case.toml", "--out", out.string(), "--quiet", "--threads",
+                               "1", "--set", "resolution.dp=0.04", "--set", "case.end_time=0.01",
+                               "--set", "output.interval=0.005"});
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_TRUE(r.err.empty()) << r;
+
+  // case.toml: every default filled in, the overrides applied, and re-loadable.
+  const std::string resolved = read_text(out / "case.toml");
+  for (const char* key :
+       {"h_over_dp", "cfl", "gamma", "sound_speed_factor", "surface_tension", "kinematic_viscosity",
+        "density_diffusion", "shifting", "interval", "formats", "[[output.line]]", "\"bottom\""}) {
+    EXPECT_NE(resolved.find(key), std::string::npos) << "case.toml lacks " << key << "\n"
+                                                     << resolved;
+  }
+  EXPECT_NE(resolved.find("dp = 0.04"), std::string::npos) << resolved;
+  EXPECT_NE(resolved.find("end_time = 0.01"), std::string::npos) << resolved;
+  const CmdResult chk = dir.run({"check", (out / "case.toml").string()});
+  EXPECT_EQ(chk.status, 0) << chk;
+  EXPECT_NE(chk.out.find("1250 fluid"), std::string::npos) << chk;
+  EXPECT_NE(chk.out.find("687 wall"), std::string::npos) << chk;
+
+  // Snapshots 0, 1, 2 (t = 0, 5 ms, 10 ms) as vtp and csv; no more.
+  for (int k = 0; k <= 2; ++k) {
+    EXPECT_TRUE(fs::exists(out / snapshot(k, "vtp"))) << k;
+    EXPECT_TRUE(fs::exists(out / snapshot(k, "csv"))) << k;
+  }
+  EXPECT_FALSE(fs::exists(out / snapshot(3, "vtp")));
+  EXPECT_FALSE(fs::exists(out / snapshot(3, "csv")));
+  const std::string vtp = read_text(out / snapshot(2, "vtp"));
+  EXPECT_EQ(vtp.rfind("<?xml", 0), 0u);
+  EXPECT_NE(vtp.find("PolyData"), std::string::npos);
+  EXPECT_NE(vtp.find("NumberOfPoints=\"1937\""), std::string::npos);
+
+  // particles.pvd: every snapshot once, increasing times, from 0 to the end time.
+  const auto pvd = read_pvd(out / "particles.pvd");
+  ASSERT_EQ(pvd.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(pvd[k].file, snapshot(k, "vtp"));
+  EXPECT_EQ(pvd.front().time, 0.0);
+  EXPECT_NEAR(pvd.back().time, end, 1e-12);
+  for (std::size_t k = 1; k < pvd.size(); ++k) EXPECT_GT(pvd[k].time, pvd[k - 1].time);
+
+  // series.csv: the contract header, one row per output time.
+  const auto series = read_lines(out / "series.csv");
+  ASSERT_EQ(series.size(), 4u);
+  EXPECT_EQ(series[0].rfind("t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed", 0),
+            0u)
+      << series[0];
+  long last_step = -1;
+  for (std::size_t k = 1; k < series.size(); ++k) {
+    const auto c = split_csv(series[k]);
+    ASSERT_GE(c.size(), 8u) << series[k];
+    EXPECT_NEAR(num(c[0]), pvd[k - 1].time, 1e-12) << series[k];
+    EXPECT_GT(std::stol(c[1]), last_step);
+    last_step = std::stol(c[1]);
+    EXPECT_EQ(c[3], "1250");
+    EXPECT_EQ(c[4], "0");
+    EXPECT_NEAR(num(c[5]), 1250 * 1000.0 * dp * dp, 1e-6);
+    EXPECT_GE(num(c[6]), 0.0);
+    EXPECT_GE(num(c[7]), 0.0);
+  }
+  EXPECT_EQ(num(split_csv(series[1])[0]), 0.0);
+  EXPECT_EQ(split_csv(series[1])[1], "0");
+  EXPECT_NEAR(num(split_csv(series.back())[0]), end, 1e-12);
+  EXPECT_GT(num(split_csv(series.back())[6]), 0.0) << "the column has started to move";
+
+  // summary.json.
+  const auto sj = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(sj.at("completed"), true);
+  for (const char* key : {"steps", "sim_time", "wall_seconds", "particle_steps_per_second",
+                          "pair_interactions_per_second", "threads", "n_particles"}) {
+    EXPECT_TRUE(sj.contains(key)) << key << "\n" << sj.dump(2);
+  }
+  EXPECT_EQ(sj.at("steps").get<long>(), last_step);
+  EXPECT_NEAR(sj.at("sim_time").get<double>(), end, 1e-12);
+  EXPECT_EQ(sj.at("threads").get<int>(), 1);
+  EXPECT_GT(sj.at("wall_seconds").get<double>(), 0.0);
+  EXPECT_GT(sj.at("particle_steps_per_second").get<double>(), 0.0);
+  EXPECT_GT(sj.at("pair_interactions_per_second").get<double>(), 0.0);
+  EXPECT_EQ(sj.at("n_particles").at("fluid").get<long>(), 1250);
+  EXPECT_EQ(sj.at("n_particles").at("wall").get<long>(), 687);
+  EXPECT_EQ(sj.at("n_particles").at("buffer").get<long>(), 0);
+
+  // Particle CSV: header, one row per particle, kinds.
+  for (int k : {0, 2}) {
+    const auto rows = read_lines(out / snapshot(k, "csv"));
+    ASSERT_EQ(rows.size(), 1u + 1937u) << k;
+    EXPECT_EQ(rows[0].rfind("id,level,kind,x,y,vx,vy,rho,p,mass", 0), 0u) << rows[0];
+    std::map<std::string, int> kinds;
+    std::set<long> ids;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+      const auto c = split_csv(rows[i]);
+      ASSERT_GE(c.size(), 10u) << rows[i];
+      ++kinds[c[2]];
+      ids.insert(std::stol(c[0]));
+      EXPECT_EQ(c[1], "0");
+      EXPECT_TRUE(std::isfinite(num(c[7])) && num(c[7]) > 0) << rows[i];
+      EXPECT_NEAR(num(c[9]), 1000.0 * dp * dp, 1e-9) << rows[i];
+    }
+    EXPECT_EQ(kinds["fluid"], 1250);
+    EXPECT_EQ(kinds["wall"], 687);
+    EXPECT_EQ(ids.size(), 1937u) << "ids are unique";
+  }
+
+  // Line profiles: line_bottom_NNNN.csv at every output time, particles within dp/2, sorted by s.
+  for (int k = 0; k <= 2; ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "line_bottom_%04d.csv", k);
+    ASSERT_TRUE(fs::exists(out / name)) << name;
+    const auto rows = read_lines(out / name);
+    ASSERT_GE(rows.size(), 2u) << name;
+    EXPECT_EQ(rows[0].rfind("s,x,y,p,level", 0), 0u) << rows[0];
+    double last_s = -1.0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+      const auto c = split_csv(rows[i]);
+      ASSERT_GE(c.size(), 5u) << rows[i];
+      const double s = num(c[0]), x = num(c[1]), y = num(c[2]);
+      EXPECT_GE(s, last_s) << name << ": not sorted by s";
+      last_s = s;
+      EXPECT_NEAR(s, x, 1e-9) << "s is the distance from `from` along the segment";
+      EXPECT_LE(std::abs(y - 0.05), 0.5 * dp + 1e-12) << rows[i];
+      EXPECT_EQ(c[4], "0");
+    }
+  }
+  EXPECT_FALSE(fs::exists(out / "line_bottom_0003.csv"));
+}
+
+// With analysis.laplace_pressure and a line, series.csv follows the Laplace figures in time
+// (laplace_mean_interior, laplace_rmse at every output) and its last row repeats summary.json's.
+TEST(CliRun, SeriesFollowsTheLaplaceError) {
+  TempDir dir;
+  const fs::path out = dir / "run";
+  const CmdResult r =
+      dir.run({"run", (kCases / "droplet_2d.toml").string(), "--out", out.string(), "--quiet",
+               "--threads", "1", "--set", "resolution.dp=2e-4", "--set", "case.end_time=0.004",
+               "--set", "output.interval=0.002", "--set", "output.formats=[\"csv\"]"});
+  ASSERT_EQ(r.status, 0) << r;
+  const auto series = read_lines(out / "series.csv");
+  ASSERT_EQ(series.size(), 4u);
+  const auto head = split_csv(series[0]);
+  ASSERT_GE(head.size(), 2u);
+  EXPECT_EQ(head[head.size() - 2], "laplace_mean_interior") << series[0];
+  EXPECT_EQ(head.back(), "laplace_rmse") << series[0];
+  // t = 0 at rest: every particle at p = 0, so the RMSE is the Laplace value itself.
+  EXPECT_NEAR(num(split_csv(series[1]).back()), 36.4, 1e-9) << series[1];
+  const auto last = split_csv(series.back());
+  const auto sj = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_DOUBLE_EQ(num(last.back()), sj.at("laplace").at("rmse").get<double>());
+  EXPECT_DOUBLE_EQ(num(last[last.size() - 2]), sj.at("laplace").at("mean_interior").get<double>());
+  EXPECT_LT(num(last.back()), 36.4) << "the interior pressure has started to rise";
+}
+
+TEST(CliRun, ResolvedCaseReproducesTheRun) {
+  // case.toml is "the case exactly as run": running it again gives the same particles.
+  TempDir dir;
+  const fs::path a = dir / "a", b = dir / "b";
+  ASSERT_EQ(dir.run(tiny_dam_break(a, 0.005, 0.005)).status, 0);
+  const CmdResult r = dir.run(
+      {"run", (a / "case.toml").string(), "--out", b.string(), "--quiet", "--threads", "1"});
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_TRUE(same_bytes(a / snapshot(1, "csv"), b / snapshot(1, "csv")));
+  EXPECT_TRUE(same_bytes(a / "series.csv", b / "series.csv"));
+  EXPECT_TRUE(same_bytes(a / "case.toml", b / "case.toml"));
+}
+
+TEST(CliRun, ThreeDimensionalCsvHasZColumns) {
+  TempDir dir;
+  const fs::path out = dir / "run";
+  const CmdResult r = dir.run({"run", dam_break_3d(), "--out", out.string(), "--quiet", "--threads",
+                               "1", "--set", "resolution.dp=0.05", "--set", "case.end_time=0.001",
+                               "--set", "output.formats=[\"vtp\", \"csv\"]"});
+  ASSERT_EQ(r.status, 0) << r;
+  const auto rows = read_lines(out / snapshot(1, "csv"));
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_EQ(rows[0].rfind("id,level,kind,x,y,z,vx,vy,vz,rho,p,mass", 0), 0u) << rows[0];
+  EXPECT_EQ(rows.size(), 1u + 768u + 4629u);  // header, fluid, walls of the 1.2 x 0.3 x 0.9 m tank
+}
+
+TEST(CliRun, QuietRunPrintsNothingOnStdout) {
+  TempDir dir;
+  const CmdResult q = dir.run(tiny_dam_break(dir / "q", 0.002, 0.002));
+  ASSERT_EQ(q.status, 0) << q;
+  EXPECT_TRUE(q.out.empty()) << q;
+  // Without --quiet and with stdout not a terminal: start and end summaries only, no progress.
+  std::vector<std::string> args = tiny_dam_break(dir / "v", 0.002, 0.002);
+  args.erase(std::find(args.begin(), args.end(), "--quiet"));
+  const CmdResult v = dir.run(args);
+  ASSERT_EQ(v.status, 0) << v;
+  EXPECT_FALSE(v.out.empty()) << v;
+  EXPECT_EQ(v.out.find('\r'), std::string::npos) << "no progress line when not on a terminal";
+  EXPECT_LE(std::count(v.out.begin(), v.out.end(), '\n'), 3) << v;
+}
+
+}  // namespace
