@@ -71,13 +71,4 @@ inline std::int64_t first_index(std::int64_t n, Pred&& pred) {
   return first;
 }
 
-// Sum of the integer count(i) over [0, n) (exact, so independent of the thread count).
-template <class Count>
-inline std::int64_t count_sum(std::int64_t n, Count&& count) {
-  std::int64_t sum = 0;
-#pragma omp parallel for schedule(static) reduction(+ : sum)
-  for (std::int64_t i = 0; i < n; ++i) sum += count(i);
-  return sum;
-}
-
 }  // namespace vrsph::exec

@@ -285,8 +285,7 @@ void Simulation<D>::check_state(const Level<D>& L) const {
   // The lowest failing index: the same report for any thread count.
   const std::size_t i = first_unstable(L);
   if (i < ps.size()) {
-    const bool is_finite = std::isfinite(ps.rho[i]) && std::isfinite(norm2(ps.vel[i])) &&
-                           std::isfinite(norm2(ps.pos[i]));
+    const bool is_finite = state_is_finite(ps, i);
     throw InstabilityError(
         fmt::format("unstable at t = {:.6g} s, step {}: {} particle id {} at {} {} (check: {})", t_,
                     step_, kind_name(ps.kind[i]), ps.id[i], position_text<D>(ps.pos[i]),

@@ -132,9 +132,7 @@ std::size_t first_unstable(const Level<D>& L) {
   auto bad = [&](std::int64_t ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return false;
-    const bool finite = std::isfinite(ps.rho[i]) && std::isfinite(norm2(ps.vel[i])) &&
-                        std::isfinite(norm2(ps.pos[i]));
-    return !finite || ps.rho[i] < 0.5 * rho0 || ps.rho[i] > 2.0 * rho0;
+    return !state_is_finite(ps, i) || ps.rho[i] < 0.5 * rho0 || ps.rho[i] > 2.0 * rho0;
   };
   return static_cast<std::size_t>(exec::first_index(static_cast<std::int64_t>(ps.size()), bad));
 }

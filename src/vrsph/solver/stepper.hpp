@@ -4,6 +4,7 @@
 // (sim/simulation.cpp) decides the dt.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "vrsph/solver/forces.hpp"
@@ -43,6 +44,13 @@ DtChoice level_dt(const Level<D>& L, const ForceStats& s, double c0);
 // The dt a level at rest allows (first step): acoustic, viscous and capillary limits.
 template <int D>
 DtChoice level_dt_at_start(const Level<D>& L, double c0);
+
+// Whether particle i's position, velocity and density are all finite.
+template <int D>
+inline bool state_is_finite(const ParticleSet<D>& ps, std::size_t i) {
+  return std::isfinite(ps.rho[i]) && std::isfinite(norm2(ps.vel[i])) &&
+         std::isfinite(norm2(ps.pos[i]));
+}
 
 // The lowest index of a non-wall particle with a non-finite state or a density outside
 // [0.5, 2] rho0, or ps.size() when there is none.

@@ -135,12 +135,14 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
       ps.rho[i] = s.rho;
       ps.vel[i] = s.vel;
     });
-    const std::int64_t removed = exec::count_sum(
-        n, [&](std::int64_t i) { return keep[static_cast<std::size_t>(i)] ? 0 : 1; });
+    std::uint64_t removed = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (keep[i]) continue;
+      tally.deleted_mass += ps.mass[i];
+      ++removed;
+    }
     if (removed == 0) continue;
-    for (std::size_t i = 0; i < ps.size(); ++i)
-      if (!keep[i]) tally.deleted_mass += ps.mass[i];
-    tally.deleted += static_cast<std::uint64_t>(removed);
+    tally.deleted += removed;
     removed_all += ps.compact(keep);
   }
   return removed_all;

@@ -86,6 +86,10 @@ void LevelCoupling<D>::before_corrector(std::vector<Level<D>>& levels) const {
   if (!multi_level()) return;
   for (std::size_t l = 0; l < levels.size(); ++l) {
     Level<D>& L = levels[l];
+    if (L.prm.shifting.model == ShiftingModel::none) {  // the corrector shifts nothing
+      L.buffer_shift_normal.clear();
+      continue;
+    }
     const LevelRegion<D>& region = links_[l].region;
     L.buffer_shift_normal.resize(L.ps.size());
     exec::for_each(static_cast<std::int64_t>(L.ps.size()), [&](std::int64_t i) {

@@ -43,7 +43,8 @@ class LevelCoupling {
   // After the pair forces: removes the net coupling force and/or net capillary force (capillary:
   // surface tension is on) as a uniform acceleration of the fluid.
   void after_forces(std::vector<Level<D>>& levels, bool capillary) const;
-  // Before the corrector: the interface normal along which buffer particles are not shifted.
+  // Before the corrector: the interface normal along which buffer particles are not shifted
+  // (levels with shifting only).
   void before_corrector(std::vector<Level<D>>& levels) const;
   // After a step of dt (0: at start): mass points, kind changes, deletions and buffer values;
   // `sort` re-sorts every level (and counts what left the domain). Returns what was created and
