@@ -19,8 +19,6 @@ struct LevelColumns {
   std::vector<double> rho, p, vol, mass;    // p from the EOS, vol = m / rho
   std::vector<double> wall_vol;             // the volume seen by a wall's continuity sum
 
-  std::size_t size() const { return rho.size(); }
-
   // Positions and volumes only (the surface passes' needs), from a read-only particle set.
   void pack_geometry(const ParticleSet<D>& ps) {
     const std::size_t n = ps.size();
