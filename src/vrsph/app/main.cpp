@@ -40,7 +40,7 @@ void check_resume_overrides(const std::vector<std::string>& sets) {
 struct CliArgs {
   std::string case_path, out_dir, resume_dir, json_out;
   std::vector<std::string> sets;
-  int threads = 0, cells = 2, halt_after = -1;
+  int threads = 0, cells = 2, block = kDefaultCellsPerBlock, halt_after = -1;
   bool quiet = false, force = false;
   double bench_time = 0.05;
 };
@@ -57,6 +57,8 @@ CLI::App* add_run_command(CLI::App& app, CliArgs& a) {
   run->add_flag("--force", a.force, "overwrite an earlier run in the output folder");
   run->add_option("--cells-per-support", a.cells, "neighbour cells per 2h (1 full, 2 half)")
       ->check(CLI::Range(1, 4));
+  run->add_option("--cells-per-block", a.block, "cells of a row that share a candidate block")
+      ->check(CLI::Range(1, 8));
   run->add_option("--halt-after-output", a.halt_after,
                   "testing aid: stop abruptly right after writing snapshot K (as a kill would)")
       ->group("");  // hidden from --help
@@ -82,6 +84,8 @@ CLI::App* add_bench_command(CLI::App& app, CliArgs& a) {
   bench->add_option("--json", a.json_out, "also write the figures to this JSON file");
   bench->add_option("--cells-per-support", a.cells, "neighbour cells per 2h (1 full, 2 half)")
       ->check(CLI::Range(1, 4));
+  bench->add_option("--cells-per-block", a.block, "cells of a row that share a candidate block")
+      ->check(CLI::Range(1, 8));
   return bench;
 }
 
@@ -91,6 +95,7 @@ int run_command(const CliArgs& a) {
   ro.quiet = a.quiet;
   ro.force = a.force;
   ro.cells_per_support = a.cells;
+  ro.cells_per_block = a.block;
   ro.halt_after_output = a.halt_after;
   if (!a.resume_dir.empty()) {
     if (!a.case_path.empty())
@@ -114,7 +119,11 @@ int bench_command(const CliArgs& a) {
   const std::string path = a.case_path.empty()
                                ? std::string(VRSPH_SOURCE_DIR) + "/cases/bench_dam_break_2d.toml"
                                : a.case_path;
-  BenchOptions bo{a.bench_time, a.threads, a.cells, {}};
+  BenchOptions bo;
+  bo.sim_time = a.bench_time;
+  bo.threads = a.threads;
+  bo.cells_per_support = a.cells;
+  bo.cells_per_block = a.block;
   if (!a.json_out.empty()) bo.json_out = a.json_out;
   return bench_case(load_case(path, a.sets), bo);
 }

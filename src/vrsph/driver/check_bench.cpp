@@ -52,7 +52,7 @@ int check_impl(CaseSpec& spec) {
 template <int D>
 int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   spec.end_time = opt.sim_time;
-  Simulation<D> sim(spec, opt.cells_per_support);
+  Simulation<D> sim(spec, opt.cells_per_support, opt.cells_per_block);
   const int threads = exec::thread_count();
   const auto t0 = std::chrono::steady_clock::now();
   while (sim.time() < opt.sim_time * (1 - 1e-9)) sim.step();
@@ -77,6 +77,7 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
       {"surface", t.surface / wall}, {"update", t.update / wall},
       {"checks", t.checks / wall},   {"other", std::max(0.0, wall - accounted) / wall}};
   j["cells_per_support"] = opt.cells_per_support;
+  j["cells_per_block"] = opt.cells_per_block;
   fmt::print("bench {}: {} particles, {} steps to t = {:g} s on {} thread(s) in {:.2f} s\n",
              spec.name, sim.total_particles(), sim.step_count(), sim.time(), threads, wall);
   // A speed means something only against another code run on the same machine (see

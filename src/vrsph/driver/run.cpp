@@ -103,7 +103,8 @@ void print_end(const Simulation<D>& sim, double wall) {
 
 template <int D>
 int run_impl(CaseSpec& spec, const RunOptions& opt) {
-  Simulation<D> sim(spec, opt.cells_per_support);  // fills spec.max_speed when derived
+  Simulation<D> sim(spec, opt.cells_per_support,
+                    opt.cells_per_block);  // fills spec.max_speed when derived
   int index = 0;
   if (opt.resume) {
     const RunState state =

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/setup/case_spec.hpp"
 
 namespace vrsph {
@@ -24,6 +25,7 @@ struct RunOptions {
   bool force = false;   // overwrite an existing run in out_dir
   bool resume = false;  // continue from out_dir/checkpoint.bin
   int cells_per_support = 2;
+  int cells_per_block = kDefaultCellsPerBlock;
   int halt_after_output = -1;  // testing aid: exit abruptly after snapshot K, as a kill would
 };
 
@@ -38,6 +40,7 @@ struct BenchOptions {
   double sim_time = 0.05;
   int threads = 0;
   int cells_per_support = 2;
+  int cells_per_block = kDefaultCellsPerBlock;
   std::optional<std::filesystem::path> json_out;
 };
 

@@ -103,6 +103,7 @@ template <int D, int K, int NS, bool kMax, class Body>
                                                std::ptrdiff_t len, Body body, double (&sum)[12],
                                                double& vmax) {
   static_assert(K <= 12 && NS <= 12, "sweep_pairs reads at most 12 columns into 12 sums");
+  if (len == 0) return;  // an empty block (most fluid particles' wall block) costs no set-up
   constexpr int L = kSweepLanes;
   const WendlandC2<D> kernel = kernel_in;  // local copies: nothing in the loop can alias them
   const double xi[3] = {xi_in[0], xi_in[1], D == 3 ? xi_in[D - 1] : 0.0};

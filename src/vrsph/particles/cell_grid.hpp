@@ -8,6 +8,7 @@
 // per pair: for_each_run(c, Group::fluid, fn) and for_each_run(c, Group::wall, fn).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -15,6 +16,10 @@
 #include "vrsph/particles/particles.hpp"
 
 namespace vrsph {
+
+// Cells of one row that share a candidate block by default (CellGrid::block_width): chosen by
+// measurement, docs/validation.md ("Candidate blocks").
+inline constexpr int kDefaultCellsPerBlock = 1;
 
 enum class Group : int { fluid = 0, wall = 1 };  // fluid group includes buffer particles
 
@@ -59,6 +64,34 @@ class CellGrid {
     }
   }
 
+  // Candidate blocks (particles/candidate_block.hpp) serve `block_width` neighbouring cells of
+  // one row: the block of cell c starts at block_first(c), and for_each_block_run visits the
+  // runs of the union of the stencils of its cells, clipped to the row (the cells clipped off
+  // are ghost cells, which hold no particle).
+  int block_width() const { return block_width_; }
+  void set_block_width(int w) { block_width_ = w < 1 ? 1 : w; }
+  std::int64_t block_first(std::int64_t c) const { return c - (c % n_[0]) % block_width_; }
+  template <class Fn>
+  void for_each_block_run(std::int64_t c0, Group g, Fn&& fn) const {
+    const std::int64_t x0 = c0 % n_[0];
+    const std::int64_t lo = std::max<std::int64_t>(x0 - reach_, 0) - x0;
+    const std::int64_t hi = std::min<std::int64_t>(x0 + block_width_ - 1 + reach_, n_[0] - 1) - x0;
+    const std::int64_t c = c0 + static_cast<std::int64_t>(g) * ncell_total_;
+    if constexpr (D == 2) {
+      for (int dy = -reach_; dy <= reach_; ++dy) {
+        const std::int64_t row = c + dy * stride_[1];
+        fn(begin_[row + lo], begin_[row + hi + 1]);
+      }
+    } else {
+      for (int dz = -reach_; dz <= reach_; ++dz) {
+        for (int dy = -reach_; dy <= reach_; ++dy) {
+          const std::int64_t row = c + dy * stride_[1] + dz * stride_[2];
+          fn(begin_[row + lo], begin_[row + hi + 1]);
+        }
+      }
+    }
+  }
+
   // Cell of each particle after the last sort (same order as the particle arrays).
   const std::vector<std::int64_t>& particle_cells() const { return pcell_; }
   std::int64_t cell_count() const { return ncell_total_; }
@@ -82,6 +115,7 @@ class CellGrid {
   double cell_size_ = 0.0;
   double inv_cell_ = 0.0;
   int reach_ = 1;
+  int block_width_ = kDefaultCellsPerBlock;
   std::array<std::int64_t, 3> lo_{0, 0, 0};      // absolute cell coordinate of table cell 0
   std::array<std::int64_t, 3> n_{1, 1, 1};       // cells per axis, ghosts included
   std::array<std::int64_t, 3> stride_{1, 1, 1};  // linear index strides

@@ -61,7 +61,8 @@ Setup resolve_setup(CaseSpec& spec, const InitialSet<D>& init0) {
 }  // namespace
 
 template <int D>
-Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
+Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_block)
+    : spec_(spec) {
   const std::vector<LevelLayout<D>> layout = make_level_layout<D>(spec);
   levels_.resize(layout.size());
 
@@ -92,6 +93,7 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support) : spec_(spec) {
   if (spec.domain_max) hi = to_vec<D>(*spec.domain_max);
   for (Level<D>& L : levels_) {
     L.grid = CellGrid<D>(lo, hi, L.prm.kernel.support(), cells_per_support);
+    L.grid.set_block_width(cells_per_block);
     L.ps.resize(L.ps.size());
     sort_particles(L);
   }

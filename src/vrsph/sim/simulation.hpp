@@ -72,7 +72,8 @@ class Simulation {
  public:
   // Builds particles and parameters from a validated case. Fills spec.max_speed when it was
   // derived (so the resolved case records it).
-  explicit Simulation(CaseSpec& spec, int cells_per_support = 2);
+  explicit Simulation(CaseSpec& spec, int cells_per_support = 2,
+                      int cells_per_block = kDefaultCellsPerBlock);
 
   void step();  // one symplectic step of size dt_next(), then chooses the next dt
 

@@ -86,15 +86,16 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceB
     const double uz = D == 3 ? vi2 - nb[C::v + D - 1] : 0.0;
     const double rij_dot_gradw = g.f * g.r2;
     const double vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
-    const double inv_r2eta = 1.0 / (g.r2 + eta2);
+    const PairReciprocals rec = pair_reciprocals(g.r2, eta2, rho_i, rho_j);
+    const double inv_r2eta = rec.inv_r2eta;
     double c = pressure_pair(p_i, nb[C::p], vol_j, inv_rho_i);
     if constexpr (VM == ViscosityModel::artificial) {
-      c += artificial_viscosity_pair(m_j, alpha_c0_h, vij_dot_rij, rho_i, rho_j, g.r2, eta2);
+      c += artificial_viscosity_pair(m_j, alpha_c0_h, vij_dot_rij, inv_r2eta, rec.inv_rho_sum);
     }
     c *= g.f;
     double ax = c * g.rx, ay = c * g.ry, az = c * g.rz;
     if constexpr (VM == ViscosityModel::laminar) {
-      const double lv = laminar_viscosity_pair(m_j, nu, rij_dot_gradw, inv_r2eta, rho_i, rho_j);
+      const double lv = laminar_viscosity_pair(m_j, nu, rij_dot_gradw, inv_r2eta, rec.inv_rho_sum);
       ax += lv * ux;
       ay += lv * uy;
       az += lv * uz;
