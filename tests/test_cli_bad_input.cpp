@@ -31,8 +31,8 @@ struct BadInput {
 
 std::ostream& operator<<(std::ostream& os, const BadInput& b) { return os << b.name; }
 
-std::vector<BadInput> bad_inputs() {
-  std::vector<BadInput> v;
+// Keys the format does not know, in a table, an inline table or as a whole table.
+void add_unknown_keys(std::vector<BadInput>& v) {
   {
     const std::string text = replace_once(kTiny, "h_over_dp = 1.3", "h_over_dp = 1.3\nfoo = 3");
     v.push_back({"unknown_key_in_file",
@@ -47,6 +47,19 @@ std::vector<BadInput> bad_inputs() {
                "",
                {},
                {"bad.toml", "solver", "unknown key"}});
+  {
+    const std::string text = replace_once(kTiny, "alpha = 0.01", "alfa = 0.01");
+    v.push_back({"unknown_key_in_inline_table",
+                 text,
+                 "",
+                 {},
+                 {"bad.toml:" + std::to_string(line_of(text, "alfa")), "numerics.viscosity.alfa",
+                  "0.01", "unknown key"}});
+  }
+}
+
+// Values of the wrong type, out of range or not among an enum's names.
+void add_wrong_types_and_values(std::vector<BadInput>& v) {
   v.push_back({"wrong_type_dp_string",
                replace_once(kTiny, "dp = 0.04", "dp = \"abc\""),
                "",
@@ -69,6 +82,15 @@ std::vector<BadInput> bad_inputs() {
                {"resolution.dp", "-0.01", "> 0"}});
   v.push_back(
       {"radius_below_dp", kCircle, "", {}, {"fluid_block.0.radius", "0.005", "resolution.dp"}});
+  v.push_back({"unknown_viscosity_model",
+               replace_once(kTiny, "model = \"artificial\"", "model = \"foo\""),
+               "",
+               {},
+               {"numerics.viscosity.model", "foo", "must be one of", "artificial", "laminar"}});
+}
+
+// Required keys and blocks left out.
+void add_missing_keys(std::vector<BadInput>& v) {
   v.push_back(
       {"missing_dp", replace_once(kTiny, "dp = 0.04\n", ""), "", {}, {"resolution.dp", "missing"}});
   v.push_back({"missing_end_time",
@@ -76,20 +98,6 @@ std::vector<BadInput> bad_inputs() {
                "",
                {},
                {"case.end_time", "missing"}});
-  v.push_back({"unknown_viscosity_model",
-               replace_once(kTiny, "model = \"artificial\"", "model = \"foo\""),
-               "",
-               {},
-               {"numerics.viscosity.model", "foo", "must be one of", "artificial", "laminar"}});
-  {
-    const std::string text = replace_once(kTiny, "alpha = 0.01", "alfa = 0.01");
-    v.push_back({"unknown_key_in_inline_table",
-                 text,
-                 "",
-                 {},
-                 {"bad.toml:" + std::to_string(line_of(text, "alfa")), "numerics.viscosity.alfa",
-                  "0.01", "unknown key"}});
-  }
   v.push_back(
       {"missing_fluid_block",
        replace_once(kTiny,
@@ -97,6 +105,10 @@ std::vector<BadInput> bad_inputs() {
        "",
        {},
        {"fluid_block", "required"}});
+}
+
+// The same classes of error from --set, and --set without a value.
+void add_set_errors(std::vector<BadInput>& v) {
   v.push_back({"set_unknown_key",
                kTiny,
                "",
@@ -134,6 +146,10 @@ std::vector<BadInput> bad_inputs() {
                {"fluid_block.3", "out of range"}});
   v.push_back(
       {"set_without_value", kTiny, "", {"--set", "resolution.dp"}, {"resolution.dp", "KEY=VALUE"}});
+}
+
+// A case file that does not exist or is not TOML.
+void add_unreadable_case_files(std::vector<BadInput>& v) {
   v.push_back({"nonexistent_case_file",
                "",
                "no_such_case.toml",
@@ -141,6 +157,15 @@ std::vector<BadInput> bad_inputs() {
                {"no_such_case.toml", "no such file"}});
   v.push_back(
       {"toml_syntax_error", "[case\nname = \"x\"\n", "", {}, {"bad.toml:1", "syntax error"}});
+}
+
+std::vector<BadInput> bad_inputs() {
+  std::vector<BadInput> v;
+  add_unknown_keys(v);
+  add_wrong_types_and_values(v);
+  add_missing_keys(v);
+  add_set_errors(v);
+  add_unreadable_case_files(v);
   return v;
 }
 

@@ -23,24 +23,8 @@ using namespace vrsph_cli_cases;
 
 double num(const std::string& s) { return std::stod(s); }
 
-TEST(CliRun, WritesEveryContractFile) {
-  TempDir dir;
-  // The dam break with a pressure line along the bottom of the column.
-  dir.write("case.toml", read_text(dam_break_2d()) + R"(
-[[output.line]]
-name = "bottom"
-from = [0.0, 0.05]
-to = [1.0, 0.05]
-)");
-  const fs::path out = dir / "run";
-  const double dp = 0.04, end = 0.01;
-  const CmdResult r = dir.run({"run", "case.toml", "--out", out.string(), "--quiet", "--threads",
-                               "1", "--set", "resolution.dp=0.04", "--set", "case.end_time=0.01",
-                               "--set", "output.interval=0.005"});
-  ASSERT_EQ(r.status, 0) << r;
-  EXPECT_TRUE(r.err.empty()) << r;
-
-  // case.toml: every default filled in, the overrides applied, and re-loadable.
+// case.toml: every default filled in, the overrides applied, and re-loadable.
+void expect_resolved_case(TempDir& dir, const fs::path& out) {
   const std::string resolved = read_text(out / "case.toml");
   for (const char* key :
        {"h_over_dp", "cfl", "gamma", "sound_speed_factor", "surface_tension", "kinematic_viscosity",
@@ -54,8 +38,10 @@ to = [1.0, 0.05]
   EXPECT_EQ(chk.status, 0) << chk;
   EXPECT_NE(chk.out.find("1250 fluid"), std::string::npos) << chk;
   EXPECT_NE(chk.out.find("687 wall"), std::string::npos) << chk;
+}
 
-  // Snapshots 0, 1, 2 (t = 0, 5 ms, 10 ms) as vtp and csv; no more.
+// Snapshots 0, 1, 2 (t = 0, 5 ms, 10 ms) as vtp and csv; no more.
+void expect_snapshots(const fs::path& out) {
   for (int k = 0; k <= 2; ++k) {
     EXPECT_TRUE(fs::exists(out / snapshot(k, "vtp"))) << k;
     EXPECT_TRUE(fs::exists(out / snapshot(k, "csv"))) << k;
@@ -66,22 +52,26 @@ to = [1.0, 0.05]
   EXPECT_EQ(vtp.rfind("<?xml", 0), 0u);
   EXPECT_NE(vtp.find("PolyData"), std::string::npos);
   EXPECT_NE(vtp.find("NumberOfPoints=\"1937\""), std::string::npos);
+}
 
-  // particles.pvd: every snapshot once, increasing times, from 0 to the end time.
-  const auto pvd = read_pvd(out / "particles.pvd");
+// particles.pvd: every snapshot once, increasing times, from 0 to the end time.
+void expect_pvd(const std::vector<PvdEntry>& pvd, double end) {
   ASSERT_EQ(pvd.size(), 3u);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(pvd[k].file, snapshot(k, "vtp"));
   EXPECT_EQ(pvd.front().time, 0.0);
   EXPECT_NEAR(pvd.back().time, end, 1e-12);
   for (std::size_t k = 1; k < pvd.size(); ++k) EXPECT_GT(pvd[k].time, pvd[k - 1].time);
+}
 
-  // series.csv: the contract header, one row per output time.
+// series.csv: the contract header, one row per output time.
+void expect_series(const fs::path& out, const std::vector<PvdEntry>& pvd, double dp, double end,
+                   long& last_step) {
   const auto series = read_lines(out / "series.csv");
   ASSERT_EQ(series.size(), 4u);
   EXPECT_EQ(series[0].rfind("t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed", 0),
             0u)
       << series[0];
-  long last_step = -1;
+  last_step = -1;
   for (std::size_t k = 1; k < series.size(); ++k) {
     const auto c = split_csv(series[k]);
     ASSERT_GE(c.size(), 8u) << series[k];
@@ -98,8 +88,10 @@ to = [1.0, 0.05]
   EXPECT_EQ(split_csv(series[1])[1], "0");
   EXPECT_NEAR(num(split_csv(series.back())[0]), end, 1e-12);
   EXPECT_GT(num(split_csv(series.back())[6]), 0.0) << "the column has started to move";
+}
 
-  // summary.json.
+// summary.json.
+void expect_summary(const fs::path& out, long last_step, double end) {
   const auto sj = nlohmann::json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(sj.at("completed"), true);
   for (const char* key : {"steps", "sim_time", "wall_seconds", "particle_steps_per_second",
@@ -115,8 +107,10 @@ to = [1.0, 0.05]
   EXPECT_EQ(sj.at("n_particles").at("fluid").get<long>(), 1250);
   EXPECT_EQ(sj.at("n_particles").at("wall").get<long>(), 687);
   EXPECT_EQ(sj.at("n_particles").at("buffer").get<long>(), 0);
+}
 
-  // Particle CSV: header, one row per particle, kinds.
+// Particle CSV: header, one row per particle, kinds.
+void expect_particle_csvs(const fs::path& out, double dp) {
   for (int k : {0, 2}) {
     const auto rows = read_lines(out / snapshot(k, "csv"));
     ASSERT_EQ(rows.size(), 1u + 1937u) << k;
@@ -136,8 +130,10 @@ to = [1.0, 0.05]
     EXPECT_EQ(kinds["wall"], 687);
     EXPECT_EQ(ids.size(), 1937u) << "ids are unique";
   }
+}
 
-  // Line profiles: line_bottom_NNNN.csv at every output time, particles within dp/2, sorted by s.
+// Line profiles: line_bottom_NNNN.csv at every output time, particles within dp/2, sorted by s.
+void expect_line_profiles(const fs::path& out, double dp) {
   for (int k = 0; k <= 2; ++k) {
     char name[64];
     std::snprintf(name, sizeof name, "line_bottom_%04d.csv", k);
@@ -158,6 +154,34 @@ to = [1.0, 0.05]
     }
   }
   EXPECT_FALSE(fs::exists(out / "line_bottom_0003.csv"));
+}
+
+TEST(CliRun, WritesEveryContractFile) {
+  TempDir dir;
+  // The dam break with a pressure line along the bottom of the column.
+  dir.write("case.toml", read_text(dam_break_2d()) + R"(
+[[output.line]]
+name = "bottom"
+from = [0.0, 0.05]
+to = [1.0, 0.05]
+)");
+  const fs::path out = dir / "run";
+  const double dp = 0.04, end = 0.01;
+  const CmdResult r = dir.run({"run", "case.toml", "--out", out.string(), "--quiet", "--threads",
+                               "1", "--set", "resolution.dp=0.04", "--set", "case.end_time=0.01",
+                               "--set", "output.interval=0.005"});
+  ASSERT_EQ(r.status, 0) << r;
+  EXPECT_TRUE(r.err.empty()) << r;
+
+  expect_resolved_case(dir, out);
+  expect_snapshots(out);
+  const auto pvd = read_pvd(out / "particles.pvd");
+  ASSERT_NO_FATAL_FAILURE(expect_pvd(pvd, end));
+  long last_step = -1;
+  ASSERT_NO_FATAL_FAILURE(expect_series(out, pvd, dp, end, last_step));
+  expect_summary(out, last_step, end);
+  ASSERT_NO_FATAL_FAILURE(expect_particle_csvs(out, dp));
+  ASSERT_NO_FATAL_FAILURE(expect_line_profiles(out, dp));
 }
 
 // With analysis.laplace_pressure and a line, series.csv follows the Laplace figures in time

@@ -40,15 +40,22 @@ ShiftingLevel shifting_params(ShiftingModel model, double dp) {
 // ---------------------------------------------------------------------------------------------
 // Lattice interior: grad C ~ 0 and div r ~ D m (m = 0.974 / 0.979), so no displacement.
 
+// Water at rest with h = 1.3 dp.
 template <int D>
-void check_lattice_interior(int n) {
-  const double dp = 1e-4;
+SolverParams<D> lattice_params(double dp) {
   SolverParams<D> prm;
   prm.dp = dp;
   prm.h = 1.3 * dp;
   prm.kernel = WendlandC2<D>(prm.h);
   prm.eos = TaitEos(kRho0, 7.0, 10.0);
   prm.mass = kRho0 * std::pow(dp, D);
+  return prm;
+}
+
+// n x n (x n) fluid particles at the centres of dp cells, the block offset by
+// (0.031, -0.017, 0.005) from the origin.
+template <int D>
+ParticleSet<D> lattice_block(int n, double dp, double mass) {
   ParticleSet<D> ps;
   std::uint64_t id = 0;
   const int nz = D == 3 ? n : 1;
@@ -59,14 +66,28 @@ void check_lattice_interior(int n) {
         x[0] = (a + 0.5) * dp + 0.031;
         x[1] = (b + 0.5) * dp - 0.017;
         if constexpr (D == 3) x[2] = (c + 0.5) * dp + 0.005;
-        ps.push_back(id++, Kind::fluid, x, Vec<D>{}, kRho0, prm.mass);
+        ps.push_back(id++, Kind::fluid, x, Vec<D>{}, kRho0, mass);
       }
+  return ps;
+}
+
+// A half-cell grid over the block, 3 dp beyond its first and last particles.
+template <int D>
+CellGrid<D> grid_around(const ParticleSet<D>& ps, double dp, double support) {
   Vec<D> lo, hi;
   for (int k = 0; k < D; ++k) {
     lo[k] = ps.pos[0][k] - 3.0 * dp;
     hi[k] = ps.pos.back()[k] + 3.0 * dp;
   }
-  CellGrid<D> grid(lo, hi, prm.kernel.support(), 2);
+  return CellGrid<D>(lo, hi, support, 2);
+}
+
+template <int D>
+void check_lattice_interior(int n) {
+  const double dp = 1e-4;
+  const SolverParams<D> prm = lattice_params<D>(dp);
+  ParticleSet<D> ps = lattice_block<D>(n, dp, prm.mass);
+  CellGrid<D> grid = grid_around(ps, dp, prm.kernel.support());
   ASSERT_TRUE(grid.sort(ps).empty());
   SurfaceFields<D> sf;
   surface_sums(prm, ps, grid, sf);

@@ -117,63 +117,93 @@ struct SmallLu {
   double norm_inf = 0.0;      // ||A||inf (largest absolute row sum)
   bool singular = false;
 
-  explicit SmallLu(const Matrix& a) : lu(a) {
-    for (int i = 0; i < N; ++i) {
-      perm[i] = i;
-      double s = 0.0;
-      for (int j = 0; j < N; ++j) s += std::fabs(a[i][j]);
-      norm_inf = std::max(norm_inf, s);
-    }
-    const double tiny = 1e-14 * norm_inf;
-    for (int k = 0; k < N; ++k) {
-      int p = k;
-      for (int i = k + 1; i < N; ++i)
-        if (std::fabs(lu[i][k]) > std::fabs(lu[p][k])) p = i;
-      if (!(std::fabs(lu[p][k]) > tiny)) {  // also catches NaN
-        singular = true;
-        return;
-      }
-      std::swap(lu[p], lu[k]);
-      std::swap(perm[p], perm[k]);
-      const double inv_pivot = 1.0 / lu[k][k];
-      for (int i = k + 1; i < N; ++i) {
-        const double l = lu[i][k] * inv_pivot;
-        lu[i][k] = l;
-        for (int j = k + 1; j < N; ++j) lu[i][j] -= l * lu[k][j];
-      }
-    }
-  }
+  explicit SmallLu(const Matrix& a);
 
   // x with A x = b.
-  Vector solve(const Vector& b) const {
-    Vector y{};
-    for (int i = 0; i < N; ++i) {  // L y = P b
-      double s = b[perm[i]];
-      for (int j = 0; j < i; ++j) s -= lu[i][j] * y[j];
-      y[i] = s;
-    }
-    for (int i = N - 1; i >= 0; --i) {  // U x = y
-      double s = y[i];
-      for (int j = i + 1; j < N; ++j) s -= lu[i][j] * y[j];
-      y[i] = s / lu[i][i];
-    }
-    return y;
-  }
+  Vector solve(const Vector& b) const;
 
   // ||A||inf ||A^-1||inf, the columns of A^-1 solved one by one; infinity when singular.
-  double cond_inf() const {
-    if (singular) return std::numeric_limits<double>::infinity();
-    std::array<double, N> row_sum{};
-    for (int c = 0; c < N; ++c) {
-      Vector e{};
-      e[c] = 1.0;
-      const Vector col = solve(e);
-      for (int r = 0; r < N; ++r) row_sum[r] += std::fabs(col[r]);
-    }
-    double inv_norm = 0.0;
-    for (int r = 0; r < N; ++r) inv_norm = std::max(inv_norm, row_sum[r]);
-    return norm_inf * inv_norm;
-  }
+  double cond_inf() const;
+
+ private:
+  // Partial pivoting at step k: the row p >= k with the largest |lu[p][k]| (the first of equals).
+  int pivot_row(int k) const;
+  // Gaussian elimination below the pivot lu[k][k]: the multipliers l_ik = lu[i][k] / lu[k][k]
+  // are stored in column k of L, and row k times l_ik is subtracted from each row i > k.
+  void eliminate_below(int k);
 };
+
+template <int N>
+inline SmallLu<N>::SmallLu(const Matrix& a) : lu(a) {
+  for (int i = 0; i < N; ++i) {
+    perm[i] = i;
+    double s = 0.0;
+    for (int j = 0; j < N; ++j) s += std::fabs(a[i][j]);
+    norm_inf = std::max(norm_inf, s);
+  }
+  const double tiny = 1e-14 * norm_inf;
+  for (int k = 0; k < N; ++k) {
+    const int p = pivot_row(k);
+    if (!(std::fabs(lu[p][k]) > tiny)) {  // also catches NaN
+      singular = true;
+      return;
+    }
+    std::swap(lu[p], lu[k]);
+    std::swap(perm[p], perm[k]);
+    eliminate_below(k);
+  }
+}
+
+template <int N>
+inline int SmallLu<N>::pivot_row(int k) const {
+  int p = k;
+  for (int i = k + 1; i < N; ++i)
+    if (std::fabs(lu[i][k]) > std::fabs(lu[p][k])) p = i;
+  return p;
+}
+
+template <int N>
+inline void SmallLu<N>::eliminate_below(int k) {
+  const double inv_pivot = 1.0 / lu[k][k];
+  for (int i = k + 1; i < N; ++i) {
+    const double l = lu[i][k] * inv_pivot;
+    lu[i][k] = l;
+    for (int j = k + 1; j < N; ++j) lu[i][j] -= l * lu[k][j];
+  }
+}
+
+// The two substitutions stay in one body, and the row sums in the constructor's first loop:
+// as separate functions (-march=native) GCC vectorised and FMA-contracted the solves of
+// interpolation.cpp differently, which changed results in the last bits.
+template <int N>
+inline typename SmallLu<N>::Vector SmallLu<N>::solve(const Vector& b) const {
+  Vector y{};
+  for (int i = 0; i < N; ++i) {  // L y = P b
+    double s = b[perm[i]];
+    for (int j = 0; j < i; ++j) s -= lu[i][j] * y[j];
+    y[i] = s;
+  }
+  for (int i = N - 1; i >= 0; --i) {  // U x = y
+    double s = y[i];
+    for (int j = i + 1; j < N; ++j) s -= lu[i][j] * y[j];
+    y[i] = s / lu[i][i];
+  }
+  return y;
+}
+
+template <int N>
+inline double SmallLu<N>::cond_inf() const {
+  if (singular) return std::numeric_limits<double>::infinity();
+  std::array<double, N> row_sum{};
+  for (int c = 0; c < N; ++c) {
+    Vector e{};
+    e[c] = 1.0;
+    const Vector col = solve(e);
+    for (int r = 0; r < N; ++r) row_sum[r] += std::fabs(col[r]);
+  }
+  double inv_norm = 0.0;
+  for (int r = 0; r < N; ++r) inv_norm = std::max(inv_norm, row_sum[r]);
+  return norm_inf * inv_norm;
+}
 
 }  // namespace vrsph
