@@ -91,6 +91,13 @@ TEST(CheckpointChecks, AByteFlippedInARecordNamesTheRecord) {
     EXPECT_NE(what.find(path.string()), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
+  // A damaged name is shown on one line all the same.
+  std::string bad_name = good;
+  bad_name[good.find("beta")] = '\n';
+  write_bytes(path, bad_name);
+  const std::string what = load_error(path);
+  EXPECT_NE(what.find("record '?eta' fails its checksum"), std::string::npos) << what;
+  EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   // A flipped count runs past the end of the file instead of being allocated.
   std::string bad = good;
   bad[good.find("alpha") + 5 + 1 + 7] = '\x7f';

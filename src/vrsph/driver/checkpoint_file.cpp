@@ -92,6 +92,14 @@ std::vector<T> read_values(FileReader& in, std::uint64_t count, const std::strin
   return v;
 }
 
+// A record name as read, fit for a one-line message (a damaged name may hold any byte).
+std::string printable(std::string name) {
+  for (char& ch : name) {
+    if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
+  }
+  return name;
+}
+
 // Reads record r (0-based) of n into c; throws on a short, impossible or damaged record.
 void read_record(FileReader& in, std::uint64_t r, std::uint64_t n, Checkpoint& c) {
   const std::string where = fmt::format("record {} of {}", r + 1, n);
@@ -100,12 +108,14 @@ void read_record(FileReader& in, std::uint64_t r, std::uint64_t n, Checkpoint& c
     in.fail(fmt::format("checkpoint {} has an impossible name length {}: the file is damaged",
                         where, len));
   }
-  std::string name(len, '\0');
-  in.read(name.data(), len, where);
+  std::string raw(len, '\0');
+  in.read(raw.data(), len, where);
+  Fnv1a64 h;
+  h.add(&len, sizeof(len)).add(raw);
+  const std::string name = printable(std::move(raw));
   const auto type = in.pod<RecordType>(fmt::format("record '{}'", name));
   const auto count = in.pod<std::uint64_t>(fmt::format("record '{}'", name));
-  Fnv1a64 h;
-  h.add(&len, sizeof(len)).add(name).add(&type, sizeof(type)).add(&count, sizeof(count));
+  h.add(&type, sizeof(type)).add(&count, sizeof(count));
   switch (type) {
     case RecordType::f64:
       c.put(name, read_values<double>(in, count, name, h));
