@@ -240,14 +240,20 @@ TEST(CliRun, QuietRunPrintsNothingOnStdout) {
   const CmdResult q = dir.run(tiny_dam_break(dir / "q", 0.002, 0.002));
   ASSERT_EQ(q.status, 0) << q;
   EXPECT_TRUE(q.out.empty()) << q;
-  // Without --quiet and with stdout not a terminal: start and end summaries only, no progress.
+  // Without --quiet and with stdout not a terminal: the start line, a line per output time
+  // (t = 0 and 2 ms) and the end line, no progress line.
   std::vector<std::string> args = tiny_dam_break(dir / "v", 0.002, 0.002);
   args.erase(std::find(args.begin(), args.end(), "--quiet"));
   const CmdResult v = dir.run(args);
   ASSERT_EQ(v.status, 0) << v;
   EXPECT_FALSE(v.out.empty()) << v;
   EXPECT_EQ(v.out.find('\r'), std::string::npos) << "no progress line when not on a terminal";
-  EXPECT_LE(std::count(v.out.begin(), v.out.end(), '\n'), 3) << v;
+  EXPECT_EQ(std::count(v.out.begin(), v.out.end(), '\n'), 4) << v;
+  // Quiet or not, run.log has them all.
+  for (const char* d : {"q", "v"}) {
+    const std::string log = read_text(dir / d / "run.log");
+    EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 5) << d << "\n" << log;
+  }
 }
 
 }  // namespace

@@ -21,16 +21,19 @@ CaseSpec load_case(const std::string& path, const std::vector<std::string>& sets
   return parse_case(tbl, path);
 }
 
-// A resumed run may change how long it runs and how often it writes, nothing physical.
+// A resumed run may change how long it runs and how often it writes: case.end_time and
+// output.interval. Other output keys would change the files being continued and are refused
+// here; a physical key reaches the checkpoint's case check, which refuses a changed value naming
+// the key (so resetting a key to the value it has is harmless).
 void check_resume_overrides(const std::vector<std::string>& sets) {
   for (const std::string& s : sets) {
     std::string key = s.substr(0, s.find('='));
     const auto first = key.find_first_not_of(" \t");
     const auto last = key.find_last_not_of(" \t");
     key = first == std::string::npos ? std::string() : key.substr(first, last - first + 1);
-    if (key != "case.end_time" && key != "output.interval") {
+    if ((key == "output" || key.starts_with("output.")) && key != "output.interval") {
       throw CaseError(fmt::format(
-          "--set {}: cannot change {} when resuming (only case.end_time and output.interval)", s,
+          "--set {}: cannot change {} when resuming (of the output keys only output.interval)", s,
           key));
     }
   }
@@ -153,7 +156,7 @@ int dispatch(int argc, char** argv) {
 int main(int argc, char** argv) {
   try {
     return dispatch(argc, argv);
-  } catch (const vrsph::CaseError& e) {
+  } catch (const vrsph::CaseError& e) {  // CheckpointError and a held lock included
     fmt::print(stderr, "vrsph: {}\n", e.what());
     return vrsph::kExitBadInput;
   } catch (const std::invalid_argument& e) {

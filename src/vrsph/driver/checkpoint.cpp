@@ -3,51 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <type_traits>
 
-#include "vrsph/output/atomic_file.hpp"
-
 namespace vrsph {
 namespace {
-
-constexpr char kMagic[8] = {'V', 'R', 'S', 'P', 'H', 'C', 'K', '\0'};
-enum class RecordType : std::uint8_t { f64 = 1, i64 = 2, u64 = 3, u8 = 4 };
-
-template <class T>
-void write_pod(std::ostream& os, const T& v) {
-  os.write(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-template <class T>
-T read_pod(std::istream& is) {
-  T v{};
-  is.read(reinterpret_cast<char*>(&v), sizeof(T));
-  if (!is) throw std::runtime_error("checkpoint: file is truncated");
-  return v;
-}
-
-template <class T>
-void write_records(std::ostream& os, const std::map<std::string, std::vector<T>>& m,
-                   RecordType type) {
-  for (const auto& [name, v] : m) {
-    write_pod(os, static_cast<std::uint32_t>(name.size()));
-    os.write(name.data(), static_cast<std::streamsize>(name.size()));
-    write_pod(os, type);
-    write_pod(os, static_cast<std::uint64_t>(v.size()));
-    os.write(reinterpret_cast<const char*>(v.data()),
-             static_cast<std::streamsize>(v.size() * sizeof(T)));
-  }
-}
-
-template <class T>
-void read_array(std::istream& is, std::uint64_t count, std::vector<T>& v) {
-  v.resize(count);
-  is.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(count * sizeof(T)));
-  if (!is) throw std::runtime_error("checkpoint: file is truncated");
-}
 
 template <class T>
 const std::vector<T>& find(const std::map<std::string, std::vector<T>>& m,
@@ -116,60 +76,6 @@ T Checkpoint::value(const std::string& n) const {
 template double Checkpoint::value<double>(const std::string&) const;
 template std::int64_t Checkpoint::value<std::int64_t>(const std::string&) const;
 template std::uint64_t Checkpoint::value<std::uint64_t>(const std::string&) const;
-
-void Checkpoint::save(const std::filesystem::path& path) const {
-  AtomicWriter w(path);
-  std::ostream& os = w.stream();
-  os.write(kMagic, sizeof(kMagic));
-  write_pod(os, kCheckpointVersion);
-  write_records(os, f64_, RecordType::f64);
-  write_records(os, i64_, RecordType::i64);
-  write_records(os, u64_, RecordType::u64);
-  write_records(os, u8_, RecordType::u8);
-  w.commit();
-}
-
-Checkpoint Checkpoint::load(const std::filesystem::path& path) {
-  std::ifstream is(path, std::ios::binary);
-  if (!is) throw std::runtime_error(path.string() + ": cannot open checkpoint");
-  char magic[8];
-  is.read(magic, sizeof(magic));
-  if (!is || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
-    throw std::runtime_error(path.string() + ": not a vrsph checkpoint");
-  }
-  const auto version = read_pod<std::uint32_t>(is);
-  if (version != kCheckpointVersion) {
-    throw std::runtime_error(fmt::format(
-        "{}: checkpoint format version {} is not supported (this build reads version {}): "
-        "rerun the case from the start",
-        path.string(), version, kCheckpointVersion));
-  }
-  Checkpoint c;
-  while (is.peek() != std::char_traits<char>::eof()) {
-    const auto len = read_pod<std::uint32_t>(is);
-    std::string name(len, '\0');
-    is.read(name.data(), len);
-    const auto type = read_pod<RecordType>(is);
-    const auto count = read_pod<std::uint64_t>(is);
-    switch (type) {
-      case RecordType::f64:
-        read_array(is, count, c.f64_[name]);
-        break;
-      case RecordType::i64:
-        read_array(is, count, c.i64_[name]);
-        break;
-      case RecordType::u64:
-        read_array(is, count, c.u64_[name]);
-        break;
-      case RecordType::u8:
-        read_array(is, count, c.u8_[name]);
-        break;
-      default:
-        throw std::runtime_error(path.string() + ": unknown record type in checkpoint");
-    }
-  }
-  return c;
-}
 
 namespace {
 

@@ -1,8 +1,10 @@
 // Restart files. A checkpoint is a versioned binary file of named arrays ("records"); every value
 // is read back by its name, never by its place in a file or in an array. A reader asks for the
 // records it knows, and a change of what a record means bumps kCheckpointVersion.
-// Layout: "VRSPHCK\0", u32 version, then records: u32 name length, name, u8 type, u64 count,
-// raw little-endian data. Written atomically (temp file + rename).
+// Layout (little-endian): "VRSPHCK\0", u32 version, u64 record count, then each record: u32 name
+// length, name, u8 type, u64 count, raw data, u64 FNV-1a checksum of the record's bytes from its
+// name length to its data. Written atomically (temp file + rename); the reader refuses a file
+// that is truncated, has a record failing its checksum, or has bytes after its last record.
 #pragma once
 
 #include <cstdint>
@@ -12,12 +14,20 @@
 #include <vector>
 
 #include "vrsph/particles/particles.hpp"
+#include "vrsph/setup/case_parser.hpp"
 
 namespace vrsph {
 
+// Version 3: a record count in the header and a checksum per record.
 // Version 2: each counter its own named record, particle arrays named after the field list.
-// Version 1 (counters in one positional array) is refused.
-inline constexpr std::uint32_t kCheckpointVersion = 2;
+// Older versions are refused with a message naming the version.
+inline constexpr std::uint32_t kCheckpointVersion = 3;
+
+// A checkpoint that cannot be used: damaged, truncated, of another format version, or of another
+// case. Bad input (exit status 1); what() names the file and the reason on one line.
+struct CheckpointError : CaseError {
+  using CaseError::CaseError;
+};
 
 class Checkpoint {
  public:
@@ -44,6 +54,8 @@ class Checkpoint {
   T value(const std::string& name) const;
 
   void save(const std::filesystem::path& path) const;
+  // Throws CheckpointError for a file that is not a whole, undamaged checkpoint of this version,
+  // std::runtime_error when it cannot be opened.
   static Checkpoint load(const std::filesystem::path& path);
 
   // The persistent arrays of ParticleSet's field list for one level, as "levelN.<field>"

@@ -17,6 +17,9 @@ inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUnstable = 2;
 inline constexpr int kExitIoError = 3;
 inline constexpr int kExitHalted = 9;  // --halt-after-output (tests only)
+// Stopped by SIGINT or SIGTERM (checkpoint and summary written): 128 + the signal number, 130 or
+// 143, as a shell reports a command killed by the signal.
+inline constexpr int kExitSignalBase = 128;
 
 struct RunOptions {
   std::filesystem::path out_dir;
@@ -29,8 +32,9 @@ struct RunOptions {
   int halt_after_output = -1;  // testing aid: exit abruptly after snapshot K, as a kill would
 };
 
-// Runs a validated case (or resumes one). Prints a one-line reason on stderr on failure and
-// returns the exit status.
+// Runs a validated case (or resumes one) holding the output folder's lock (RunLock). Prints a
+// one-line reason on stderr on failure and returns the exit status; bad input (CaseError, a live
+// lock, a checkpoint that does not fit) is thrown.
 int run_case(CaseSpec spec, const RunOptions& opt);
 
 // Builds the particles and reports counts, h, c0, dt and the grid without running.

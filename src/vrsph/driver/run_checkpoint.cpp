@@ -4,6 +4,8 @@
 
 #include <type_traits>
 
+#include "vrsph/driver/fnv_hash.hpp"
+#include "vrsph/setup/case_keys.hpp"
 #include "vrsph/setup/case_parser.hpp"
 
 namespace vrsph {
@@ -18,6 +20,25 @@ RunState get_run_state(const Checkpoint& ck) {
     v = ck.value<std::decay_t<decltype(v)>>(name);
   });
   return s;
+}
+
+void put_case(Checkpoint& ck, const std::string& physical_text) {
+  ck.put("case.physical_keys",
+         std::vector<std::uint8_t>(physical_text.begin(), physical_text.end()));
+  ck.put_value("case.hash", fnv1a64(physical_text));
+}
+
+void check_case(const Checkpoint& ck, const CaseSpec& spec, const std::filesystem::path& path) {
+  const std::string text = physical_case_text(spec);
+  if (fnv1a64(text) == ck.value<std::uint64_t>("case.hash")) return;
+  const auto& stored = ck.u8("case.physical_keys");
+  const std::string changes = describe_key_changes(
+      parse_case_text(text), parse_case_text(std::string(stored.begin(), stored.end())),
+      "checkpoint");
+  throw CheckpointError(fmt::format(
+      "{}: the case differs from the checkpointed run: {}: a resumed run may change only "
+      "case.end_time and the output keys",
+      path.string(), changes.empty() ? "its hash does not match" : changes));
 }
 
 template <int D>

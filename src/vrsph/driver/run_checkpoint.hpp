@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -56,10 +57,18 @@ void for_each_record(S& s, F&& f) {
 }
 
 void put_run_state(Checkpoint& ck, const RunState& s);
+
+// The physical keys of the case (physical_case_text) and their FNV-1a hash, as the records
+// "case.physical_keys" and "case.hash".
+void put_case(Checkpoint& ck, const std::string& physical_text);
+// Throws CheckpointError naming `path` and every physical key whose value in `spec` differs from
+// the checkpointed run's (case.end_time and the output keys may change on resume).
+void check_case(const Checkpoint& ck, const CaseSpec& spec, const std::filesystem::path& path);
 // Throws std::runtime_error naming the first missing record.
 RunState get_run_state(const Checkpoint& ck);
 
-// The checkpoint of the current state of `sim`, written with snapshot `output_index`.
+// The checkpoint of the current state of `sim`, after snapshot `output_index`; the case records
+// are the caller's (put_case).
 template <int D>
 Checkpoint make_checkpoint(const Simulation<D>& sim, std::int64_t output_index);
 

@@ -7,8 +7,10 @@
 #include "vrsph/analysis/laplace.hpp"
 #include "vrsph/driver/level_samples.hpp"
 #include "vrsph/driver/run_checkpoint.hpp"
+#include "vrsph/output/build_info.hpp"
 #include "vrsph/output/line_profile.hpp"
 #include "vrsph/output/summary.hpp"
+#include "vrsph/setup/case_keys.hpp"
 #include "vrsph/setup/geometry.hpp"
 
 namespace vrsph {
@@ -114,6 +116,7 @@ template <int D>
 RunOutputs<D>::RunOutputs(const CaseSpec& spec, std::filesystem::path dir, bool fresh, double t)
     : spec_(spec),
       dir_(std::move(dir)),
+      case_text_(physical_case_text(spec)),
       pvd_(open_pvd(dir_ / "particles.pvd", fresh, t)),
       extras_(extra_columns(spec)),
       series_(open_series(dir_ / "series.csv", fresh, t, column_names(extras_))) {}
@@ -160,8 +163,14 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   if (has_laplace(spec_)) in.laplace = first_line_laplace(sim, spec_);
   for (const SeriesExtraColumn& c : extras_) row.extra.push_back(c.value(in));
   series_.append(row);
-  // Checkpoint: everything needed to continue bit for bit from this output time.
-  const Checkpoint ck = make_checkpoint(sim, index);
+  write_checkpoint(sim, index);
+}
+
+// Everything needed to continue bit for bit from this state.
+template <int D>
+void RunOutputs<D>::write_checkpoint(const Simulation<D>& sim, int index) const {
+  Checkpoint ck = make_checkpoint(sim, index);
+  put_case(ck, case_text_);
   ck.save(dir_ / "checkpoint.bin");
 }
 
@@ -172,6 +181,8 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed, 
   nlohmann::json j;
   j["completed"] = completed;
   if (!error.empty()) j["error"] = error;
+  j["version"] = std::string(program_version());
+  j["git_commit"] = std::string(git_commit());
   j["case"] = spec_.name;
   j["dimension"] = D;
   j["steps"] = sim.step_count();

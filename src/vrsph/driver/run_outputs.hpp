@@ -39,6 +39,9 @@ class RunOutputs {
   // Writes snapshot `index` of the current state (and the checkpoint) at the current time.
   void write(Simulation<D>& sim, int index);
 
+  // Writes the checkpoint of the current state, `index` being the last snapshot written.
+  void write_checkpoint(const Simulation<D>& sim, int index) const;
+
   // The summary of a finished or stopped run.
   nlohmann::json summary(const Simulation<D>& sim, bool completed, double wall_seconds, int threads,
                          const std::string& error) const;
@@ -48,6 +51,7 @@ class RunOutputs {
  private:
   const CaseSpec& spec_;
   std::filesystem::path dir_;
+  std::string case_text_;  // the physical keys, checkpointed to refuse a resume of another case
   PvdCollection pvd_;
   std::vector<SeriesExtraColumn> extras_;
   SeriesWriter series_;

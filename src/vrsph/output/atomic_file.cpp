@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -74,6 +75,28 @@ void finish_temp(int fd, const fs::path& temp, const fs::path& target) {
 }
 
 }  // namespace
+
+bool is_temp_file_name(std::string_view name) {
+  constexpr std::string_view kTag = ".tmp";
+  constexpr std::size_t kRandom = 6;  // mkstemp's XXXXXX
+  if (name.size() < 1 + 1 + kTag.size() + kRandom || name.front() != '.') return false;
+  const std::size_t tag = name.size() - kRandom - kTag.size();
+  if (name.substr(tag, kTag.size()) != kTag) return false;
+  for (const char c : name.substr(tag + kTag.size())) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) return false;
+  }
+  return true;
+}
+
+std::size_t remove_temp_files(const fs::path& dir) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.is_regular_file(ec) && is_temp_file_name(e.path().filename().string()))
+      removed += fs::remove(e.path(), ec) ? 1 : 0;
+  }
+  return removed;
+}
 
 void sync_directory(const fs::path& dir) noexcept {
   const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);

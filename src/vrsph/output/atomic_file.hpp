@@ -46,6 +46,13 @@ class AtomicWriter {
 // Reads a whole file into a string; throws std::runtime_error (path and errno text) on failure.
 std::string read_text_file(const std::filesystem::path& path);
 
+// Removes the temporary files of atomic writes (".<name>.tmpXXXXXX") that a killed process left in
+// `dir` and returns how many. Only for a folder no other process writes to (its run lock held).
+std::size_t remove_temp_files(const std::filesystem::path& dir);
+
+// Whether a file name has the form of such a temporary file.
+bool is_temp_file_name(std::string_view name);
+
 // fsyncs a directory so that a rename inside it is durable; errors are ignored (best effort).
 void sync_directory(const std::filesystem::path& dir) noexcept;
 

@@ -18,12 +18,25 @@ std::string clock_text(double seconds) {
   return fmt::format("{:02d}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
 }
 
+// "12.3 s" under a minute, "hh:mm:ss" beyond.
+std::string duration_text(double seconds) {
+  return seconds < 59.95 ? fmt::format("{:.1f} s", seconds) : clock_text(seconds);
+}
+
 int time_decimals(double end_time) {
   if (!(end_time > 0.0)) return 4;
   return std::clamp(static_cast<int>(std::ceil(-std::log10(end_time))) + 3, 4, 12);
 }
 
 }  // namespace
+
+std::string output_time_line(const OutputTimeState& s) {
+  const int decimals = time_decimals(s.end_time);
+  return fmt::format(
+      "t = {:.{}f} / {:.{}f} s  step {}  dt = {:.3e} s  {} particles  wall {}  ETA {}", s.t,
+      decimals, s.end_time, decimals, s.step, s.dt, s.particles, duration_text(s.wall_seconds),
+      clock_text(s.eta_seconds));
+}
 
 Progress::Progress(double end_time, bool enabled, std::FILE* out)
     : end_time_(end_time), enabled_(enabled), out_(out), decimals_(time_decimals(end_time)) {}

@@ -2,6 +2,8 @@
 //   "\r  t = 0.0123 / 0.2000 s  step 1234  540 steps/s  ETA 00:01:23"
 // redrawn at most 4 times per second. The caller decides whether to show it
 // (enabled = !quiet && isatty(stdout)); when disabled every call does nothing.
+// Off a terminal (a batch job, a pipe) a run prints instead one line per output time,
+// output_time_line(), which also goes to run.log.
 #pragma once
 
 #include <chrono>
@@ -9,6 +11,21 @@
 #include <string>
 
 namespace vrsph {
+
+// What the line of an output time shows.
+struct OutputTimeState {
+  double t = 0.0;         // s
+  double end_time = 0.0;  // s
+  long step = 0;
+  double dt = 0.0;  // s, the last step
+  std::size_t particles = 0;
+  double wall_seconds = 0.0;  // of the run so far, earlier parts of a resumed run included
+  double eta_seconds = -1.0;  // < 0: not known yet
+};
+
+// "t = 0.0050 / 0.0200 s  step 43  dt = 1.163e-04 s  1937 particles  wall 0.6 s  ETA 00:00:02"
+// (wall in hh:mm:ss beyond a minute)
+std::string output_time_line(const OutputTimeState& s);
 
 class Progress {
  public:

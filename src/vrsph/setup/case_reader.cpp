@@ -42,6 +42,8 @@ std::string render_float(double v) {
   return fmt::format("{}", v);
 }
 
+}  // namespace
+
 // Full (untruncated) compact rendering; see render_value().
 std::string render_full(const toml::node& node) {
   if (const auto* s = node.as_string()) return toml_quote(s->get());
@@ -68,8 +70,6 @@ std::string render_full(const toml::node& node) {
   node.visit([&](const auto& n) { os << n; });
   return os.str();
 }
-
-}  // namespace
 
 // Error prefix for a node: "--set ", "file:line: " or "file: ".
 std::string location_of(const toml::node* node, const std::string& source) {

@@ -23,6 +23,8 @@ std::string location_of(const toml::node* node, const std::string& source);
 
 // Compact one-line TOML rendering of a node, for error messages.
 std::string render_value(const toml::node& node);
+// The same rendering uncut (render_value cuts long values).
+std::string render_full(const toml::node& node);
 
 // A TOML basic string literal with quotes and escapes.
 std::string toml_quote(std::string_view text);
