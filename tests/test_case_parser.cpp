@@ -1,5 +1,5 @@
 // The case-file layer: defaults, round trip through case_to_toml, one-line errors for every class
-// of bad input, and --set overrides (CONTRACT.md, "Case file" and "Command line").
+// of bad input, and --set overrides (docs/cases.md, including "--set overrides").
 #include <gtest/gtest.h>
 
 #include <filesystem>
