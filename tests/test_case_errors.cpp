@@ -1,5 +1,5 @@
 // The case-file layer on bad input: one-line errors for every class of bad input, --set overrides
-// and their errors, and loading a case file (CONTRACT.md, "Case file" and "Command line").
+// and their errors, and loading a case file (docs/cases.md and the README).
 #include <gtest/gtest.h>
 
 #include <filesystem>

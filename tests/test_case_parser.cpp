@@ -1,5 +1,5 @@
-// The case-file layer: defaults and the round trip through case_to_toml (CONTRACT.md, "Case
-// file"); errors and --set overrides: test_case_errors.cpp.
+// The case-file layer: defaults and the round trip through case_to_toml (docs/cases.md); errors
+// and --set overrides: test_case_errors.cpp.
 #include <gtest/gtest.h>
 
 #include <string>

@@ -1,4 +1,4 @@
-// The `vrsph` command as a user meets it (shared/CONTRACT.md "Command line", "Output folder"):
+// The `vrsph` command as a user meets it (README "Using it", docs/outputs.md):
 // usage errors, the output folder, `check`, an unstable run, thread independence (bad input:
 // test_cli_bad_input.cpp; the files of a run: test_cli_run.cpp). Every test runs
 // the real binary on tiny cases (a few hundred to two thousand particles, a few ms simulated).

@@ -221,7 +221,7 @@ double fourtakas_over_molteni(double c0_factor) {
 
 TYPED_TEST(ForcesTest, FourtakasRemovesHydrostaticPart) {
   constexpr int D = TypeParam::value;
-  // c0 = 20 sqrt(g H) (PHYSICS.md): k H = gamma / 400 ~ 1.75e-2.
+  // c0 = 20 sqrt(g H) (docs/physics.md section 2): k H = gamma / 400 ~ 1.75e-2.
   const double r20 = fourtakas_over_molteni<D>(20.0);
   const double r40 = fourtakas_over_molteni<D>(40.0);
   std::printf(

@@ -1,6 +1,6 @@
-// Wendland C2 kernel properties (PHYSICS.md section 1), 2D and 3D: normalisation by quadrature,
-// compact support, F(r) = W'(r)/r, and the lattice sums every SPH operator relies on (Shepard sum,
-// zero gradient sum, gradient-consistency matrix ~ identity).
+// Wendland C2 kernel properties (docs/physics.md section 1), 2D and 3D: normalisation by
+// quadrature, compact support, F(r) = W'(r)/r, and the lattice sums every SPH operator relies on
+// (Shepard sum, zero gradient sum, gradient-consistency matrix ~ identity).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// `vrsph run --resume DIR` (shared/CONTRACT.md "Command line"; README: "--resume continues from
+// `vrsph run --resume DIR` (docs/outputs.md "checkpoint.bin"; README: "--resume continues from
 // the checkpoint and reaches the same final state, bit for bit, as an uninterrupted run with the
 // same thread count"). A run is stopped abruptly with the hidden testing option
 // `--halt-after-output K` (exit status 9 right after snapshot K, as a kill would), resumed, and

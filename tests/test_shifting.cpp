@@ -1,5 +1,6 @@
-// Particle shifting (PHYSICS.md section 4): the displacement formula (physics/shifting.hpp) and the
-// sums it is fed from (surface_sums: grad C, div r), then short droplet runs with both models.
+// Particle shifting (docs/physics.md section 7): the displacement formula (physics/shifting.hpp)
+// and the sums it is fed from (surface_sums: grad C, div r), then short droplet runs with both
+// models.
 //  - an undisturbed lattice interior has grad C = 0, so no displacement (lind and skillen);
 //  - each component is clamped to 0.1 dp; zero below the free-surface threshold T on div r, and
 //    scaled by (div r - T)/(D - T) above it; skillen scales with |v| dt (zero at rest);

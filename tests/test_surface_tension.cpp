@@ -1,4 +1,4 @@
-// Surface tension (PHYSICS.md section 3) on static particle sets:
+// Surface tension (docs/physics.md section 6) on static particle sets:
 //  - lambda (smallest eigenvalue of the correction matrix M_i) in a lattice block (h = 1.3 dp):
 //    bulk 0.9739 (2D) / 0.9789 (3D), outer row of a flat face 0.4870 / 0.4894;
 //  - the curvature operator with exact radial normals imposed: kappa = 1/R on the outer ring of a
@@ -133,7 +133,7 @@ LayerStats layer_curvature(const Static<D>& s, double r_lo, double r_hi) {
 // The outer ring sits at r = R - dp/2. Its neighbourhood is one-sided (inwards, where 1/r is
 // larger), so the corrected gradient of n = x/|x| carries a first-order bias: measured kappa ~ 1/(R
 // - 1.03 dp), i.e. kappa R = 1.055 (dp = 1e-4) and 1.026 (dp = 5e-5); against the ring's own
-// radius 1.028 and 1.014 (PHYSICS.md: "outer ring within 3%"). Checked: within 5% of 1/r_ring,
+// radius 1.028 and 1.014 (docs/physics.md: within 3%). Checked: within 5% of 1/r_ring,
 // within 6% / 3% of 1/R, and the error halves with dp.
 TEST(SurfaceTensionCurvature, RadialNormalsOnRingsGiveOneOverR) {
   const double R = 0.002;

@@ -1,4 +1,4 @@
-// Surface tension (PHYSICS.md section 3): the full model on a static circle (the integrated
+// Surface tension (docs/physics.md section 6): the full model on a static circle (the integrated
 // inward force equals the Laplace jump times the perimeter, sum_i V_i F_st,i . (-e_r) = 2 pi sigma:
 // rings within 5%, a Cartesian-lattice circle overshoots about 1.6x - 1.9x, printed), no surface
 // force in the interior of a lattice, droplet_2d at dp = 1e-4 heading towards sigma / R = 36.4 Pa,
@@ -66,7 +66,7 @@ TEST(SurfaceTensionForce, IntegratedForceOnLatticeCircleOvershoots) {
     const double ratio = integrated_force_ratio(s);
     std::printf(
         "[ surface 2D lattice dp=%g ] integrated inward force / (2 pi sigma) = %.4f "
-        "(PHYSICS.md: about %s)\n",
+        "(docs/physics.md: about %s)\n",
         dp, ratio, dp > 7e-5 ? "1.6" : "1.9");
     EXPECT_GT(ratio, 1.3) << "dp = " << dp;
     EXPECT_LT(ratio, 2.5) << "dp = " << dp;

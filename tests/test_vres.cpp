@@ -1,4 +1,4 @@
-// Variable resolution (issue #4, PHYSICS.md section 5): level layout and zones, mass points,
+// Variable resolution (issue #4, docs/physics.md section 10): level layout and zones, mass points,
 // and short coupled runs: a still tank with a refinement box, a uniform flow through an
 // interface (mass created against the flux), and a droplet crossing the resolution boundary.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Buffer-particle interpolation of variable resolution (vres/interpolation.hpp, PHYSICS.md
+// Buffer-particle interpolation of variable resolution (vres/interpolation.hpp, docs/physics.md
 // section 5): first-order corrected SPH (Liu & Liu 2006) from a donor level's fluid particles.
 //  - linear rho and velocity are reproduced to round-off on a jittered lattice (up to 0.25 dp),
 //    in the bulk and within h of the cloud's edge, where Shepard alone is visibly wrong;

@@ -1,6 +1,6 @@
 // Dam-break surge front (Martin & Moyce 1952; Koshizuka & Oka 1996): the leading edge of the
 // fluid along the floor, Z = x_front / a against T = t sqrt(2 g / a), compared with the digitised
-// experiments in shared/reference/dam_break_front.csv. The experiments lag simulations because
+// experiments in reference/dam_break_front.csv. The experiments lag simulations because
 // the gate takes time to lift; a shift of the simulated T by +0.175 is the usual allowance and
 // is applied explicitly by the caller (time_shift).
 #pragma once

@@ -1,5 +1,5 @@
-// Pressure-profile error against the Laplace pressure (PHYSICS.md section 6, the poster's table):
-// RMSE of the particle pressures along a line (the droplet diameter) against p = sigma / R,
+// Pressure-profile error against the Laplace pressure (docs/physics.md section 11, the poster's
+// table): RMSE of the particle pressures along a line (the droplet diameter) against p = sigma / R,
 // NRMSE = RMSE / p_expected. `rmse_all` uses every particle of the line; `rmse` and
 // `mean_interior` only those at least 2h from both ends of the line's particle set, away from
 // the free-surface rows where the pressure falls to zero.

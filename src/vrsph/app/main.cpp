@@ -1,4 +1,5 @@
-// The `vrsph` command: run, check and bench a case file (CONTRACT.md "Command line").
+// The `vrsph` command: run, check and bench a case file (README "Using it"; docs/cases.md,
+// docs/outputs.md).
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>

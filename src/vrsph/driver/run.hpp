@@ -11,7 +11,8 @@
 
 namespace vrsph {
 
-// Exit statuses of the command (CONTRACT.md: 0 success, non-zero with a one-line reason).
+// Exit statuses of the command (docs/outputs.md, "On the terminal": 0 success, non-zero with a
+// one-line reason).
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 1;
 inline constexpr int kExitUnstable = 2;

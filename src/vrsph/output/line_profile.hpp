@@ -1,6 +1,6 @@
-// Pressure profile along a segment (the poster's diameter plot): the fluid and buffer particles
-// (walls excluded) within half_width of the segment from -> to, i.e. with perpendicular distance
-// <= half_width and projection s in [0, |to - from|], sorted by s (ties by particle id).
+// Pressure profile along a segment (the poster's diameter plot): the fluid particles (walls and
+// buffer particles excluded) within half_width of the segment from -> to, i.e. with perpendicular
+// distance <= half_width and projection s in [0, |to - from|], sorted by s (ties by particle id).
 // File columns: s,x,y[,z],p,level.
 #pragma once
 

@@ -1,6 +1,6 @@
 // Particle snapshots: VTK XML PolyData (.vtp) with a ParaView time-series collection (.pvd), and
 // plain CSV. Extra per-particle fields can be appended as further arrays/columns without touching
-// the writers. Column and array names follow ../shared/CONTRACT.md ("Output folder").
+// the writers. Column and array names: docs/outputs.md ("Particle snapshots").
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// summary.json (written at the end of a run; the caller builds the JSON, see CONTRACT.md) and
+// summary.json (written at the end of a run; the caller builds the JSON, see docs/outputs.md) and
 // reading a JSON file back.
 #pragma once
 

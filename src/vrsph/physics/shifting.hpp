@@ -1,4 +1,4 @@
-// Particle shifting (PHYSICS.md section 4), applied in the corrector from the half-step positions:
+// Particle shifting (docs/physics.md section 7), in the corrector from half-step positions:
 //   grad C_i = sum_j V_j grad_i W_ij,  div r_i = -sum_j V_j r_ij . grad_i W_ij (~D in the bulk)
 //   Skillen et al. (2013, CMAME 265:163): dr_i = -A h |v_i| dt grad C_i   (A = 2)
 //   Lind et al. (2012, JCP 231:1499):      dr_i = -A h^2 grad C_i          (A = 0.05 here)

@@ -1,6 +1,6 @@
 // Single-phase surface tension of Cen, Fourtakas, Lind & Rogers (2024, Comput. Phys. Commun.
-// 295:109012), as extended to variable resolution by Lee et al. (poster, shared/seed), written out
-// in PHYSICS.md section 3. Per particle i (fluid only), in three neighbour passes:
+// 295:109012), as extended to variable resolution by Lee et al. (conference poster), written out
+// in docs/physics.md section 6. Per particle i (fluid only), in three neighbour passes:
 //  1. M_i = sum_j V_j (r_j - r_i) (x) grad_i W_ij  (~ I in the bulk), L_i = M_i^-1,
 //     lambda_i = smallest eigenvalue of M_i (~1 inside, ~0.5 on a flat surface);
 //  2. grad lambda_i = L_i sum_j (lambda_j - lambda_i) V_j grad_i W_ij   if lambda_i >= 0.7,

@@ -1,5 +1,5 @@
 // The case-file layer: TOML case file (+ --set overrides) -> validated CaseSpec, and back.
-// Key names and rules follow ../shared/CONTRACT.md; defaults follow ../shared/PHYSICS.md.
+// docs/cases.md describes every key, its default and its checks.
 //
 // Typical use (the `vrsph` command):
 //   toml::table tbl = load_case_table(path);
@@ -19,6 +19,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "vrsph/setup/case_spec.hpp"
 
@@ -43,6 +44,12 @@ void apply_override(toml::table& tbl, const std::string& key_eq_value);
 // Validates the table (unknown keys, missing required keys, types, impossible values) and returns
 // the spec with every default filled in. source_name (usually the file path) prefixes errors.
 CaseSpec parse_case(const toml::table& tbl, const std::string& source_name);
+
+// Every key a case file may hold, as its dotted --set path with "N" standing for an array index
+// ("case.name", "numerics.viscosity.model", "fluid_block.N.radius", "output.line.N.name"): the
+// keys of the schema parse_case() checks against (case_schema.hpp) that are not tables
+// themselves, in schema order.
+std::vector<std::string> known_case_keys();
 
 // The resolved case as TOML, every default written out; parse_case() of it gives an equal spec.
 std::string case_to_toml(const CaseSpec& spec);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "vrsph/setup/case_parser.hpp"
+#include "vrsph/setup/case_schema.hpp"
 
 namespace vrsph::case_detail {
 
@@ -76,8 +77,6 @@ inline constexpr EnumName<FillMode> kFillNames[] = {
     {"lattice", FillMode::lattice}, {"rings", FillMode::rings}, {"cells", FillMode::cells}};
 inline constexpr EnumName<WallShape> kWallShapeNames[] = {{"tank", WallShape::tank},
                                                           {"box", WallShape::box}};
-
-using Keys = std::span<const std::string_view>;
 
 // Typed reader over one table (or over nothing: an absent optional section).
 class TableReader {

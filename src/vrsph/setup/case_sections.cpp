@@ -1,5 +1,6 @@
-// parse_case(): the case-file schema, one function per table, with defaults (PHYSICS.md) and
-// validation (CONTRACT.md). Reading and error formatting are in case_reader.cpp.
+// parse_case(): reads the case file one function per table, against the key lists of
+// case_schema.hpp, with the defaults and checks that docs/cases.md describes; and
+// known_case_keys(). Reading and error formatting are in case_reader.cpp.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,37 +8,12 @@
 
 #include "vrsph/setup/case_parser.hpp"
 #include "vrsph/setup/case_reader.hpp"
+#include "vrsph/setup/case_schema.hpp"
 
 namespace vrsph {
 namespace {
 
 using namespace case_detail;
-
-// The allowed keys of every table (the schema); anything else is an "unknown key" error.
-constexpr std::string_view kRootKeys[] = {"case",       "fluid",       "eos",        "resolution",
-                                          "numerics",   "fluid_block", "wall_block", "domain",
-                                          "refinement", "output",      "analysis"};
-constexpr std::string_view kCaseKeys[] = {"name", "dimension", "end_time"};
-constexpr std::string_view kFluidKeys[] = {"density", "kinematic_viscosity", "surface_tension",
-                                           "gravity"};
-constexpr std::string_view kEosKeys[] = {"gamma", "max_speed", "sound_speed_factor", "sound_speed"};
-constexpr std::string_view kResolutionKeys[] = {"dp", "h_over_dp"};
-constexpr std::string_view kNumericsKeys[] = {"cfl",
-                                              "viscosity",
-                                              "density_diffusion",
-                                              "shifting",
-                                              "surface_tension",
-                                              "hydrostatic_initial_density",
-                                              "vres_conserve_momentum",
-                                              "vres_buffer_fill_min"};
-constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",   "min",
-                                                "max",   "fill",   "velocity", "pressure"};
-constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
-constexpr std::string_view kDomainKeys[] = {"min", "max", "max_lost_fraction"};
-constexpr std::string_view kRefinementKeys[] = {"min", "max", "dp_ratio", "buffer_width"};
-constexpr std::string_view kOutputKeys[] = {"interval", "formats", "line"};
-constexpr std::string_view kLineKeys[] = {"name", "from", "to"};
-constexpr std::string_view kAnalysisKeys[] = {"laplace_pressure"};
 
 // "[a, b]" or "[a, b, c]": the first dim components, for messages.
 std::string vec_text(const Vec3d& v, int dim) {
@@ -113,7 +89,6 @@ void parse_eos(const TableReader& r, EosParams& p) {
 // the [numerics] reader.
 
 // numerics.viscosity: model (default laminar), alpha.
-constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 void read_viscosity(const TableReader& n, ViscosityParams& p) {
   const auto r = n.sub_table("viscosity", kViscosityKeys);
   p.model = r.opt_enum("model", kViscosityNames).value_or(p.model);
@@ -121,7 +96,6 @@ void read_viscosity(const TableReader& n, ViscosityParams& p) {
 }
 
 // numerics.density_diffusion: model (default molteni), delta.
-constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
 void read_density_diffusion(const TableReader& n, DiffusionParams& p) {
   const auto r = n.sub_table("density_diffusion", kDiffusionKeys);
   p.model = r.opt_enum("model", kDiffusionNames).value_or(p.model);
@@ -130,7 +104,6 @@ void read_density_diffusion(const TableReader& n, DiffusionParams& p) {
 
 // numerics.shifting: model (default none), coefficient (0.05 lind / 2 skillen),
 // surface_threshold (1.5 in 2D, 2.75 in 3D; must lie in [0, dimension)).
-constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
 void read_shifting(const TableReader& n, int dim, ShiftingParams& p) {
   const auto r = n.sub_table("shifting", kShiftingKeys);
   p.model = r.opt_enum("model", kShiftingNames).value_or(p.model);
@@ -143,9 +116,6 @@ void read_shifting(const TableReader& n, int dim, ShiftingParams& p) {
 }
 
 // numerics.surface_tension: the normal's thresholds and the options beyond Cen et al.
-constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon",
-                                                    "surface_offset", "curvature_correction",
-                                                    "zero_net_force"};
 void read_surface_tension(const TableReader& n, SurfaceTensionParams& p) {
   const auto r = n.sub_table("surface_tension", kSurfaceTensionKeys);
   p.lambda_threshold = r.opt_number("lambda_threshold", kUnitClosed).value_or(p.lambda_threshold);
@@ -300,6 +270,51 @@ CaseSpec parse_case(const toml::table& tbl, const std::string& source_name) {
   spec.laplace_pressure =
       root.sub_table("analysis", kAnalysisKeys).opt_number("laplace_pressure", kPositive);
   return spec;
+}
+
+namespace {
+
+// The schema table at `path`, or null.
+const SchemaTable* schema_table(std::string_view path) {
+  for (const SchemaTable& t : kCaseSchema) {
+    if (t.path == path) return &t;
+  }
+  return nullptr;
+}
+
+// "a.b" (or "b" when a is empty).
+std::string join_key(std::string_view a, std::string_view b) {
+  return a.empty() ? std::string(b) : fmt::format("{}.{}", a, b);
+}
+
+// The --set form of a table's path: ".N" after every array of tables on the way
+// ("output.line" -> "output.line.N").
+std::string set_path(std::string_view path) {
+  std::string out, prefix;
+  while (!path.empty()) {
+    const std::size_t dot = path.find('.');
+    const std::string_view seg = path.substr(0, dot);
+    prefix = join_key(prefix, seg);
+    out = join_key(out, seg);
+    const SchemaTable* t = schema_table(prefix);
+    if (t != nullptr && t->array) out += ".N";
+    path = dot == std::string_view::npos ? std::string_view() : path.substr(dot + 1);
+  }
+  return out;
+}
+
+}  // namespace
+
+// The leaves of kCaseSchema; see case_parser.hpp.
+std::vector<std::string> known_case_keys() {
+  std::vector<std::string> out;
+  for (const SchemaTable& t : kCaseSchema) {
+    for (const std::string_view k : t.keys) {
+      if (schema_table(join_key(t.path, k)) != nullptr) continue;  // a table: its keys follow
+      out.push_back(join_key(set_path(t.path), k));
+    }
+  }
+  return out;
 }
 
 }  // namespace vrsph

@@ -1,7 +1,7 @@
 // The validated description of a run: what a case file (plus --set overrides) says, with every
 // default filled in. Built by parse_case() (case_parser.hpp); consumed by the solver set-up.
 // Vectors are stored with 3 components; only the first `dimension` are meaningful.
-// Key names follow ../shared/CONTRACT.md; defaults follow ../shared/PHYSICS.md.
+// Every key with its unit, default and checks: docs/cases.md.
 #pragma once
 
 #include <array>

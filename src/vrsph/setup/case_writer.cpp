@@ -1,5 +1,5 @@
 // case_to_toml(): the resolved case written back as TOML with every default filled in, in the
-// layout of CONTRACT.md. parse_case() of the result gives back an equal CaseSpec (numbers are
+// layout of docs/cases.md. parse_case() of the result gives back an equal CaseSpec (numbers are
 // written in their shortest exact round-trip form).
 #include <fmt/format.h>
 

@@ -30,7 +30,7 @@ double now_seconds() {
 }
 
 // Speed of sound (common to all levels): given, or sound_speed_factor x max_speed, with
-// max_speed = sqrt(g H) for gravity cases when not given (PHYSICS.md
+// max_speed = sqrt(g H) for gravity cases when not given (docs/physics.md
 // section 2). H and initial velocities come from the level-0 fill. Fills spec.eos.max_speed when
 // it was derived, so that the resolved case records it.
 template <int D>
@@ -164,8 +164,8 @@ void Simulation<D>::update_pressure() {
   }
 }
 
-// Next dt: the minimum over levels (one global dt, PHYSICS.md section 5); `s` holds the maxima
-// of both stages over all levels, and the speeds are taken per level.
+// Next dt: the minimum over levels (one global dt, docs/physics.md section 10); `s` holds the
+// maxima of both stages over all levels, and the speeds are taken per level.
 template <int D>
 DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
   DtChoice best{1e300, DtLimit{}};

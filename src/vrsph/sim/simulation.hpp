@@ -1,6 +1,6 @@
 // One simulation: the resolution levels (one without [[refinement]]), their coupling
 // (vres/level_coupling.hpp) and the scheduler that advances them: the symplectic step of
-// PHYSICS.md section 2 on every level with one global dt (solver/stepper.hpp), the coupling's
+// docs/physics.md section 9 on every level with one global dt (solver/stepper.hpp), the coupling's
 // hooks in between. Local time stepping per level plugs in here (docs/architecture.md). The
 // driver (run.cpp) owns outputs, checkpoints and the progress line; this class only advances the
 // physics and checks stability.

@@ -1,5 +1,5 @@
-// Numerical parameters of one resolution level, resolved from the case (PHYSICS.md sections 1-2).
-// Everything a pass needs is here, precomputed once, so hot loops read plain numbers.
+// Numerical parameters of one resolution level, resolved from the case (docs/physics.md sections
+// 1-8). Everything a pass needs is here, precomputed once, so hot loops read plain numbers.
 #pragma once
 
 #include "vrsph/core/kernel.hpp"

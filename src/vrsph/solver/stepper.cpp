@@ -37,7 +37,7 @@ ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction) {
 // Predictor (dt/2): x+ = x + dt/2 v, v+ = v + dt/2 (a + g), rho+ = rho + dt/2 drho.
 // Walls keep position and velocity; their density is clamped at >= rho0 (physics/walls.hpp).
 // Buffer particles move with their velocity; their v and rho are imposed (from another level,
-// PHYSICS.md section 5) and not integrated.
+// docs/physics.md section 10) and not integrated.
 template <int D>
 void predictor(Level<D>& L, double dt) {
   ParticleSet<D>& ps = L.ps;

@@ -1,6 +1,6 @@
-// The stepper of one level: the stages of one symplectic step (PHYSICS.md section 2) of a level at
-// a dt it is given. It knows nothing of other levels: variable resolution calls its stages in
-// order and exchanges buffer data between them (vres/level_coupling.hpp), and the scheduler
+// The stepper of one level: the stages of one symplectic step (docs/physics.md section 9) of a
+// level at a dt it is given. It knows nothing of other levels: variable resolution calls its stages
+// in order and exchanges buffer data between them (vres/level_coupling.hpp), and the scheduler
 // (sim/simulation.cpp) decides the dt.
 #pragma once
 

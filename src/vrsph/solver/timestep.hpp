@@ -1,5 +1,5 @@
 // Variable time step (Monaghan & Kos 1999, as DualSPHysics' DtVariable), plus the viscous and
-// capillary limits of PHYSICS.md section 2:
+// capillary limits of docs/physics.md section 8:
 //   dt = min( cfl min(dt_f, dt_cv), dt_visc, dt_st )
 //   dt_f  = sqrt(h / max|a|)                       (a without gravity)
 //   dt_cv = h / (max(c0, 10 v_max) + h max_ij v_ij.r_ij/(r^2 + eta^2))

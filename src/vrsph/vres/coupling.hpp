@@ -1,5 +1,5 @@
-// Coupling of resolution levels after each step (PHYSICS.md section 5; Ricci, Vacondio & Tafuni
-// 2024, as DualSPHysics' VRes does it):
+// Coupling of resolution levels after each step (docs/physics.md section 10; Ricci, Vacondio &
+// Tafuni 2024, as DualSPHysics' VRes does it):
 //  1. mass points on the outer face of each buffer accumulate the mass the other level's flow
 //     carries into the buffer, dm = -rho (u . n) dA dt times the donor's smoothed fill (about 1
 //     inside the fluid, 1/2 on its free surface, 0 outside); a stored mass above one particle

@@ -1,5 +1,5 @@
-// Buffer-particle values of variable resolution (PHYSICS.md section 5; Ricci, Vacondio & Tafuni
-// 2024): the density and velocity at a point, taken from the fluid particles of the other
+// Buffer-particle values of variable resolution (docs/physics.md section 10; Ricci, Vacondio &
+// Tafuni 2024): the density and velocity at a point, taken from the fluid particles of the other
 // ("donor") level by first-order consistent corrected SPH (Liu & Liu 2006, "Restoring particle
 // consistency in smoothed particle hydrodynamics", Appl. Numer. Math. 56:19-36).
 //

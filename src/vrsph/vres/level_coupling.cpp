@@ -99,7 +99,7 @@ void LevelCoupling<D>::before_corrector(std::vector<Level<D>>& levels) const {
   }
 }
 
-// Variable resolution after a step (PHYSICS.md section 5): mass points, kind changes and
+// Variable resolution after a step (docs/physics.md section 10): mass points, kind changes and
 // deletions, then buffer values from the other levels; with conserve_momentum, the fluid
 // momentum jump of the kind changes is removed as a uniform velocity (momentum.hpp).
 template <int D>

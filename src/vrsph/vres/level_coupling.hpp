@@ -1,6 +1,6 @@
-// The coupling of the resolution levels of one simulation (PHYSICS.md section 5), as one object
-// the scheduler (sim/simulation.cpp) calls through a few named hooks, in this order per force
-// evaluation and step:
+// The coupling of the resolution levels of one simulation (docs/physics.md section 10), as one
+// object the scheduler (sim/simulation.cpp) calls through a few named hooks, in this order per
+// force evaluation and step:
 //   after_surface_sums -> after_normals -> after_forces      (each force evaluation)
 //   before_corrector -> after_step                           (each step)
 // It owns what ties levels together: regions, buffer shells and mass points (vres/coupling.hpp),

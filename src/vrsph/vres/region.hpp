@@ -1,4 +1,4 @@
-// Geometry of variable resolution (PHYSICS.md section 5; Ricci, Vacondio & Tafuni 2024, CMAME
+// Geometry of variable resolution (docs/physics.md section 10; Ricci, Vacondio & Tafuni 2024, CMAME
 // 418:116500, as in DualSPHysics' VRes): which part of space each level owns and where its
 // buffer particles live.
 //
