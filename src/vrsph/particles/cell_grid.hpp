@@ -19,7 +19,7 @@ namespace vrsph {
 
 // Cells of one row that share a candidate block by default (CellGrid::block_width): chosen by
 // measurement, docs/validation.md ("Candidate blocks").
-inline constexpr int kDefaultCellsPerBlock = 1;
+inline constexpr int kDefaultCellsPerBlock = 2;
 
 enum class Group : int { fluid = 0, wall = 1 };  // fluid group includes buffer particles
 
