@@ -111,6 +111,8 @@ TEST(CaseDocs, EveryEnumValueIsInItsRow) {
       {"fluid_block.N.shape", names_of(kBlockShapeNames)},
       {"fluid_block.N.fill", names_of(kFillNames)},
       {"wall_block.N.shape", names_of(kWallShapeNames)},
+      {"output.precision", names_of(kPrecisionNames)},
+      {"output.compression", names_of(kCompressionNames)},
   };
   const auto rows = documented_rows(kCasesDoc);
   for (const auto& [key, values] : enums) {

@@ -85,6 +85,13 @@ TEST(CaseParser, BadEnumsAndShapes) {
       {"test.toml:13: ", "numerics.viscosity.model = \"foo\"", "\"laminar\"", "\"artificial\""});
   expect_contains(error_of(m + "[output]\nformats = [\"vtp\", \"png\"]\n"),
                   {"output.formats", "\"vtp\" or \"csv\""});
+  expect_contains(error_of(m + "[output]\nprecision = \"single\"\n"),
+                  {"test.toml:13: ", "output.precision = \"single\"",
+                   "must be one of \"double\", \"float32\""});
+  expect_contains(
+      error_of(m + "[output]\ncompression = \"gzip\"\n"),
+      {"test.toml:13: ", "output.compression = \"gzip\"", "must be one of \"none\", \"zlib\""});
+  expect_contains(error_of(m + "[output]\nprecision = 32\n"), {"output.precision = 32", "string"});
   expect_contains(error_of(edited("\"circle\"", "\"sphere\"")),
                   {"fluid_block.0.shape = \"sphere\"", "2D"});
   expect_contains(error_of(edited("radius = 0.002", "radius = 0.002\nfill = \"rings\"",
@@ -151,6 +158,8 @@ TEST(CaseOverride, ErrorsSayTheyCameFromSet) {
                   {"--set resolution.dp = -1: must be > 0"});
   expect_contains(error_of(kMinimal, {"numerics.shifting.model=bogus"}),
                   {"--set numerics.shifting.model = \"bogus\"", "must be one of"});
+  expect_contains(error_of(kMinimal, {"output.compression=lz4"}),
+                  {"--set output.compression = \"lz4\"", "must be one of \"none\", \"zlib\""});
   expect_contains(error_of(kMinimal, {"fluid_block.1.radius=0.001"}),
                   {"--set fluid_block.1.radius", "out of range"});
   expect_contains(error_of(kMinimal, {"wall_block.0.layers=2"}), {"wall_block", "does not exist"});

@@ -74,6 +74,8 @@ max = [0.002, 0.001]
 [output]
 interval = 0.01
 formats = ["csv"]
+precision = "float32"
+compression = "zlib"
 [[output.line]]
 name = "diameter"
 from = [-0.002, 0.0]
@@ -124,6 +126,8 @@ TEST(CaseParser, MinimalCaseGetsPhysicsDefaults) {
   EXPECT_DOUBLE_EQ(s.output_interval, 0.0);
   EXPECT_TRUE(s.write_vtp);
   EXPECT_TRUE(s.write_csv);
+  EXPECT_EQ(s.output_precision, OutputPrecision::float64);
+  EXPECT_EQ(s.output_compression, OutputCompression::none);
   EXPECT_TRUE(s.lines.empty());
   EXPECT_FALSE(s.laplace_pressure.has_value());
 }
@@ -201,6 +205,8 @@ TEST(CaseParser, RoundTripEveryKey) {
   EXPECT_EQ(s.fluid_blocks[0].fill, FillMode::rings);
   EXPECT_EQ(s.refinements[1].dp_ratio, 2);
   EXPECT_FALSE(s.write_vtp);
+  EXPECT_EQ(s.output_precision, OutputPrecision::float32);
+  EXPECT_EQ(s.output_compression, OutputCompression::zlib);
   EXPECT_TRUE(s.numerics.surface_tension.curvature_correction);
   EXPECT_TRUE(s.vres_conserve_momentum);
   EXPECT_EQ(s.vres_buffer_fill_min, 0.3);

@@ -1,5 +1,5 @@
 // The files of a `vrsph run` as a user meets them: every contract file, the series with the
-// Laplace error, the resolved case, 3D columns, --quiet.
+// Laplace error, the resolved case, 3D columns, float32 and zlib snapshots, --quiet.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -233,6 +233,36 @@ TEST(CliRun, ThreeDimensionalCsvHasZColumns) {
   ASSERT_GE(rows.size(), 2u);
   EXPECT_EQ(rows[0].rfind("id,level,kind,x,y,z,vx,vy,vz,rho,p,mass", 0), 0u) << rows[0];
   EXPECT_EQ(rows.size(), 1u + 768u + 4629u);  // header, fluid, walls of the 1.2 x 0.3 x 0.9 m tank
+}
+
+// output.precision and output.compression change the snapshots' storage, not the run.
+TEST(CliRun, Float32AndZlibSnapshotsOfTheSameRun) {
+  TempDir dir;
+  const fs::path a = dir / "a", b = dir / "b";
+  ASSERT_EQ(dir.run(tiny_dam_break(a, 0.002, 0.002)).status, 0);
+  std::vector<std::string> args = tiny_dam_break(b, 0.002, 0.002);
+  for (const char* set : {"output.precision=\"float32\"", "output.compression=\"zlib\""})
+    args.insert(args.end(), {"--set", set});
+  const CmdResult r = dir.run(args);
+  ASSERT_EQ(r.status, 0) << r;
+  const std::string vtp = read_text(b / snapshot(1, "vtp"));
+  EXPECT_NE(vtp.find("compressor=\"vtkZLibDataCompressor\""), std::string::npos);
+  EXPECT_NE(vtp.find("type=\"Float64\" Name=\"Points\""), std::string::npos);
+  EXPECT_NE(vtp.find("type=\"Float32\" Name=\"rho\""), std::string::npos);
+  EXPECT_LT(vtp.size(), read_text(a / snapshot(1, "vtp")).size() / 2);
+  EXPECT_LT(fs::file_size(b / snapshot(1, "csv")), fs::file_size(a / snapshot(1, "csv")));
+  EXPECT_TRUE(same_bytes(a / "series.csv", b / "series.csv"));
+  const std::string resolved = read_text(b / "case.toml");
+  EXPECT_NE(resolved.find("precision = \"float32\""), std::string::npos) << resolved;
+  EXPECT_NE(resolved.find("compression = \"zlib\""), std::string::npos) << resolved;
+  // Positions keep every digit in the CSV.
+  const auto rows_a = read_lines(a / snapshot(1, "csv")),
+             rows_b = read_lines(b / snapshot(1, "csv"));
+  ASSERT_EQ(rows_a.size(), rows_b.size());
+  for (std::size_t i = 1; i < rows_a.size(); ++i) {
+    const auto ca = split_csv(rows_a[i]), cb = split_csv(rows_b[i]);
+    for (std::size_t c = 0; c < 5; ++c) ASSERT_EQ(ca[c], cb[c]) << rows_b[i];
+  }
 }
 
 TEST(CliRun, QuietRunPrintsNothingOnStdout) {

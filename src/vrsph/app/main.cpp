@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "vrsph/driver/data_dir.hpp"
 #include "vrsph/driver/run.hpp"
 #include "vrsph/setup/case_parser.hpp"
 
@@ -20,6 +21,14 @@ CaseSpec load_case(const std::string& path, const std::vector<std::string>& sets
   toml::table tbl = load_case_table(path);
   for (const std::string& s : sets) apply_override(tbl, s);
   return parse_case(tbl, path);
+}
+
+// A case named on the command line: found from the current folder, or else among the shipped
+// data (data_dir.hpp), which is said in one line.
+CaseSpec load_given_case(const std::string& given, const std::vector<std::string>& sets) {
+  const std::string path = find_case_file(given).string();
+  if (path != given) fmt::print("vrsph: {} is not in this folder: reading {}\n", given, path);
+  return load_case(path, sets);
 }
 
 // A resumed run may change how long it runs and how often it writes: case.end_time and
@@ -80,7 +89,8 @@ CLI::App* add_check_command(CLI::App& app, CliArgs& a) {
 CLI::App* add_bench_command(CLI::App& app, CliArgs& a) {
   CLI::App* bench =
       app.add_subcommand("bench", "time a case without outputs (default: the benchmark case)");
-  bench->add_option("case", a.case_path, "case file (default cases/bench_dam_break_2d.toml)");
+  bench->add_option("case", a.case_path,
+                    "case file (default cases/bench_dam_break_2d.toml of the shipped data)");
   bench->add_option("--time", a.bench_time, "simulated time in s")->check(CLI::PositiveNumber);
   bench->add_option("--threads", a.threads, "OpenMP threads")
       ->check(CLI::Range(1, 4096).description("an integer >= 1"));
@@ -113,7 +123,7 @@ int run_command(const CliArgs& a) {
                     ro);
   }
   if (a.case_path.empty()) throw CaseError("run: a case file (or --resume DIR) is required");
-  CaseSpec spec = load_case(a.case_path, a.sets);
+  CaseSpec spec = load_given_case(a.case_path, a.sets);
   ro.out_dir = a.out_dir.empty() ? std::filesystem::path("out") / spec.name
                                  : std::filesystem::path(a.out_dir);
   return run_case(std::move(spec), ro);
@@ -121,15 +131,21 @@ int run_command(const CliArgs& a) {
 
 int bench_command(const CliArgs& a) {
   const std::string path = a.case_path.empty()
-                               ? std::string(VRSPH_SOURCE_DIR) + "/cases/bench_dam_break_2d.toml"
+                               ? (data_dir() / "cases" / "bench_dam_break_2d.toml").string()
                                : a.case_path;
+  if (a.case_path.empty() && !std::filesystem::exists(path)) {
+    throw CaseError(fmt::format(
+        "bench: the benchmark case {} is missing (the data folder is found from VRSPH_DATA_DIR, "
+        "then ../share/vrsph beside the executable, then the source tree)",
+        path));
+  }
   BenchOptions bo;
   bo.sim_time = a.bench_time;
   bo.threads = a.threads;
   bo.cells_per_support = a.cells;
   bo.cells_per_block = a.block;
   if (!a.json_out.empty()) bo.json_out = a.json_out;
-  return bench_case(load_case(path, a.sets), bo);
+  return bench_case(load_given_case(path, a.sets), bo);
 }
 
 int dispatch(int argc, char** argv) {
@@ -147,7 +163,7 @@ int dispatch(int argc, char** argv) {
     fmt::print(stderr, "vrsph: {}\n", e.what());
     return kExitBadInput;
   }
-  if (*check) return check_case(load_case(args.case_path, args.sets));
+  if (*check) return check_case(load_given_case(args.case_path, args.sets));
   if (*bench) return bench_command(args);
   return run_command(args);
 }

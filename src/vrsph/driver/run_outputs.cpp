@@ -136,14 +136,17 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   const std::span<const std::uint8_t> level(merged.level);  // empty: single level, all 0
   const std::vector<ExtraField> extra_fields = surface_extras(sim);
   const std::span<const ExtraField> extras(extra_fields);
+  SnapshotFormat format;
+  format.float32 = spec_.output_precision == OutputPrecision::float32;
+  format.zlib = spec_.output_compression == OutputCompression::zlib;
   if (spec_.write_vtp) {
     const std::string name = snapshot_file_name(index, "vtp");
-    write_vtp<D>(dir_ / name, ps, extras, level);
+    write_vtp<D>(dir_ / name, ps, extras, level, format);
     pvd_.add(sim.time(), name);
     pvd_.write();
   }
   if (spec_.write_csv)
-    write_particles_csv<D>(dir_ / snapshot_file_name(index, "csv"), ps, extras, level);
+    write_particles_csv<D>(dir_ / snapshot_file_name(index, "csv"), ps, extras, level, format);
   for (const OutputLine& line : spec_.lines) {
     const auto samples = sample_levels(sim, line);
     write_line_samples<D>(dir_ / line_file_name(line.name, index), samples);

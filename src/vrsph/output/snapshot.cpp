@@ -102,18 +102,20 @@ std::string csv_header(std::span<const ExtraField> extras) {
   return h + "\n";
 }
 
-// One CSV row for particle i, appended to `buf`.
-template <int D>
+// One CSV row for particle i, appended to `buf`; the fields after the position as Real.
+template <class Real, int D>
 void csv_row(fmt::memory_buffer& buf, const ParticleSet<D>& ps, std::size_t i, int level,
              std::span<const ExtraField> extras) {
   auto out = fmt::appender(buf);
+  auto field = [&out](double v) { fmt::format_to(out, ",{}", static_cast<Real>(v)); };
   fmt::format_to(out, "{},{},{}", ps.id[i], level, kind_name(ps.kind[i]));
   for (int k = 0; k < D; ++k) fmt::format_to(out, ",{}", ps.pos[i][k]);
-  for (int k = 0; k < D; ++k) fmt::format_to(out, ",{}", ps.vel[i][k]);
-  fmt::format_to(out, ",{},{},{}", ps.rho[i], ps.p[i], ps.mass[i]);
+  for (int k = 0; k < D; ++k) field(ps.vel[i][k]);
+  field(ps.rho[i]);
+  field(ps.p[i]);
+  field(ps.mass[i]);
   for (const ExtraField& f : extras)
-    for (int c = 0; c < f.components; ++c)
-      fmt::format_to(out, ",{}", f.values[i * f.components + c]);
+    for (int c = 0; c < f.components; ++c) field(f.values[i * f.components + c]);
   buf.push_back('\n');
 }
 
@@ -121,13 +123,19 @@ void csv_row(fmt::memory_buffer& buf, const ParticleSet<D>& ps, std::size_t i, i
 
 template <int D>
 void write_particles_csv(const std::filesystem::path& path, const ParticleSet<D>& ps,
-                         std::span<const ExtraField> extras, std::span<const std::uint8_t> level) {
+                         std::span<const ExtraField> extras, std::span<const std::uint8_t> level,
+                         SnapshotFormat format) {
   check_snapshot_inputs(ps.size(), extras, level, ps.p.size());
   fmt::memory_buffer buf;
   const std::string header = csv_header<D>(extras);
   buf.append(header.data(), header.data() + header.size());
-  for (std::size_t i = 0; i < ps.size(); ++i)
-    csv_row(buf, ps, i, level.empty() ? 0 : level[i], extras);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const int l = level.empty() ? 0 : level[i];
+    if (format.float32)
+      csv_row<float>(buf, ps, i, l, extras);
+    else
+      csv_row<double>(buf, ps, i, l, extras);
+  }
   write_file_atomic(path, std::string_view(buf.data(), buf.size()));
 }
 
@@ -157,9 +165,11 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
 }
 
 template void write_particles_csv<2>(const std::filesystem::path&, const ParticleSet<2>&,
-                                     std::span<const ExtraField>, std::span<const std::uint8_t>);
+                                     std::span<const ExtraField>, std::span<const std::uint8_t>,
+                                     SnapshotFormat);
 template void write_particles_csv<3>(const std::filesystem::path&, const ParticleSet<3>&,
-                                     std::span<const ExtraField>, std::span<const std::uint8_t>);
+                                     std::span<const ExtraField>, std::span<const std::uint8_t>,
+                                     SnapshotFormat);
 template MergedLevels<2> merge_levels<2>(std::span<const ParticleSet<2>* const>);
 template MergedLevels<3> merge_levels<3>(std::span<const ParticleSet<3>* const>);
 

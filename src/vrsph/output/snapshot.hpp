@@ -25,22 +25,36 @@ struct ExtraField {
   std::vector<double> values;  // size() == n * components
 };
 
+// How the particle fields of a snapshot are stored (case keys output.precision and
+// output.compression, docs/outputs.md).
+struct SnapshotFormat {
+  // Particle fields (velocity, rho, p, mass and the extras) as float32: Float32 arrays in the
+  // .vtp, and in the CSV the shortest text that reads back as the same float (about 7 digits
+  // instead of up to 17). Positions, id, level and kind are written as without it.
+  bool float32 = false;
+  // The .vtp appended data zlib-compressed (vtk_zlib.hpp); the CSV is not affected.
+  bool zlib = false;
+};
+
 // `level` gives the resolution level of each particle; empty means all level 0.
 // Both writers are atomic (temp file + rename) and throw std::runtime_error on I/O failure and
 // std::invalid_argument when an extra field or `level` has the wrong size.
 
-// VTK XML PolyData, appended raw binary (Float64 / UInt64 / UInt8 / Int64): Points (x, y, z; z = 0
-// in 2D), one vertex per particle, PointData id, level, kind (0 fluid, 1 wall, 2 buffer),
-// velocity (3 components), rho, p, mass, then the extras.
+// VTK XML PolyData, appended binary (Float64 / UInt64 / UInt8 / Int64; the fields Float32 with
+// format.float32): Points (x, y, z; z = 0 in 2D, always Float64), one vertex per particle,
+// PointData id, level, kind (0 fluid, 1 wall, 2 buffer), velocity (3 components), rho, p, mass,
+// then the extras.
 template <int D>
 void write_vtp(const std::filesystem::path& path, const ParticleSet<D>& ps,
-               std::span<const ExtraField> extras, std::span<const std::uint8_t> level);
+               std::span<const ExtraField> extras, std::span<const std::uint8_t> level,
+               SnapshotFormat format = {});
 
 // CSV with header id,level,kind,x,y[,z],vx,vy[,vz],rho,p,mass[,extras...]; kind as a word;
-// numbers in shortest round-trip form.
+// numbers in shortest round-trip form (of the float32 value for the fields with format.float32).
 template <int D>
 void write_particles_csv(const std::filesystem::path& path, const ParticleSet<D>& ps,
-                         std::span<const ExtraField> extras, std::span<const std::uint8_t> level);
+                         std::span<const ExtraField> extras, std::span<const std::uint8_t> level,
+                         SnapshotFormat format = {});
 
 // "particles_0007.vtp" for (7, "vtp"): the snapshot file name of output number `index`.
 std::string snapshot_file_name(int index, std::string_view extension);

@@ -77,6 +77,10 @@ inline constexpr EnumName<FillMode> kFillNames[] = {
     {"lattice", FillMode::lattice}, {"rings", FillMode::rings}, {"cells", FillMode::cells}};
 inline constexpr EnumName<WallShape> kWallShapeNames[] = {{"tank", WallShape::tank},
                                                           {"box", WallShape::box}};
+inline constexpr EnumName<OutputPrecision> kPrecisionNames[] = {
+    {"double", OutputPrecision::float64}, {"float32", OutputPrecision::float32}};
+inline constexpr EnumName<OutputCompression> kCompressionNames[] = {
+    {"none", OutputCompression::none}, {"zlib", OutputCompression::zlib}};
 
 // Typed reader over one table (or over nothing: an absent optional section).
 class TableReader {

@@ -41,7 +41,8 @@ inline constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radiu
 inline constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
 inline constexpr std::string_view kDomainKeys[] = {"min", "max", "max_lost_fraction"};
 inline constexpr std::string_view kRefinementKeys[] = {"min", "max", "dp_ratio", "buffer_width"};
-inline constexpr std::string_view kOutputKeys[] = {"interval", "formats", "line"};
+inline constexpr std::string_view kOutputKeys[] = {"interval", "formats", "precision",
+                                                   "compression", "line"};
 inline constexpr std::string_view kLineKeys[] = {"name", "from", "to"};
 inline constexpr std::string_view kAnalysisKeys[] = {"laplace_pressure"};
 

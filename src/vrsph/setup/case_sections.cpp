@@ -214,7 +214,8 @@ RefinementBox parse_refinement(const TableReader& r, const CaseSpec& spec) {
   return b;
 }
 
-// [output]: interval >= 0, formats from {"vtp", "csv"}, [[output.line]] segments.
+// [output]: interval >= 0, formats from {"vtp", "csv"}, precision and compression of the
+// snapshots, [[output.line]] segments.
 void parse_output(const TableReader& r, CaseSpec& spec) {
   spec.output_interval = r.opt_number("interval", kNonNegative).value_or(spec.output_interval);
   if (const auto formats = r.opt_string_array("formats")) {
@@ -224,6 +225,9 @@ void parse_output(const TableReader& r, CaseSpec& spec) {
       (f == "vtp" ? spec.write_vtp : spec.write_csv) = true;
     }
   }
+  spec.output_precision = r.opt_enum("precision", kPrecisionNames).value_or(spec.output_precision);
+  spec.output_compression =
+      r.opt_enum("compression", kCompressionNames).value_or(spec.output_compression);
   std::set<std::string> names;
   for (const auto& lr : r.table_array("line", kLineKeys)) {
     OutputLine line;

@@ -25,6 +25,10 @@ enum class BlockShape { circle, sphere, box };
 // faces lie dp/2 beyond the outer rows at every resolution level.
 enum class FillMode { lattice, rings, cells };
 enum class WallShape { tank, box };
+// output.precision: how the particle fields of a snapshot are stored (positions stay double).
+enum class OutputPrecision { float64, float32 };
+// output.compression: the .vtp appended data as written, or zlib-compressed.
+enum class OutputCompression { none, zlib };
 
 struct FluidBlock {
   BlockShape shape = BlockShape::box;
@@ -120,6 +124,8 @@ struct CaseSpec {
   double output_interval = 0.0;  // 0: only the initial and final snapshots
   bool write_vtp = true;
   bool write_csv = true;
+  OutputPrecision output_precision = OutputPrecision::float64;
+  OutputCompression output_compression = OutputCompression::none;
   std::vector<OutputLine> lines;
 
   // [analysis]

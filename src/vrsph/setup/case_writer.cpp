@@ -171,6 +171,10 @@ void write_output(Writer& w, const CaseSpec& s) {
   if (s.write_vtp) formats += "\"vtp\"";
   if (s.write_csv) formats += std::string(formats.empty() ? "" : ", ") + "\"csv\"";
   w.kv("formats", "[" + formats + "]");
+  w.kv("precision", toml_quote(enum_name(kPrecisionNames, s.output_precision)),
+       "particle fields of the snapshots; positions stay double");
+  w.kv("compression", toml_quote(enum_name(kCompressionNames, s.output_compression)),
+       ".vtp appended data");
   for (const auto& line : s.lines) {
     w.header("[[output.line]]");
     w.kv("name", toml_quote(line.name));
