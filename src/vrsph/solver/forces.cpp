@@ -60,8 +60,8 @@ struct Self {
   }
 };
 
-// Sums of one particle over its blocks: acceleration (s0..s2), drho/dt (s3), pairs (s4), and the
-// viscous time-step measure (max).
+// Sums of one particle over its blocks: drho/dt (s0), pairs (s1), acceleration (s2..s1+D; a 2D
+// sweep sums no zero z component), and the viscous time-step measure (max).
 struct ForceSums {
   double s[12] = {};
   double max_visc_dt = -1e300;
@@ -109,13 +109,15 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceB
       dr += fourtakas_diffusion_pair(two_delta_h_c0, vol_j, rho_i, rho_j, rho_h, rij_dot_gradw,
                                      inv_r2eta);
     }
-    PairSums s;  // acceleration, drho/dt, pair count, viscous dt measure
-    s.s0 = ax, s.s1 = ay, s.s2 = az, s.s3 = dr, s.s4 = g.in;
+    PairSums s;  // drho/dt, pair count, acceleration, viscous dt measure
+    s.s0 = dr, s.s1 = g.in, s.s2 = ax, s.s3 = ay;
+    if constexpr (D == 3) s.s4 = az;
     s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
     return s;
   };
-  sweep_pairs<D, C::count, 5, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len),
-                                    pair, out.s, out.max_visc_dt);
+  sweep_pairs<D, C::count, 2 + D, true>(prm.kernel, me.x, blk.col,
+                                        static_cast<std::ptrdiff_t>(blk.len), pair, out.s,
+                                        out.max_visc_dt);
 }
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
@@ -131,12 +133,12 @@ inline void wall_sweep(const SolverParams<D>& prm, const Self& me, const ForceBl
     const double vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
     const double inv_r2eta = 1.0 / (g.r2 + eta2);
     PairSums s;
-    s.s3 = continuity_pair(rho_i, nb[C::wall_vol], g.f, vij_dot_rij);
-    s.s4 = g.in;
+    s.s0 = continuity_pair(rho_i, nb[C::wall_vol], g.f, vij_dot_rij);
+    s.s1 = g.in;
     s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
     return s;
   };
-  sweep_pairs<D, C::count, 5, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+  sweep_pairs<D, C::count, 2, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len),
                                     pair, out.s, out.max_visc_dt);
 }
 
@@ -158,7 +160,7 @@ struct ForceAcc {
 template <int D>
 Vec<D> acceleration(const ForceSums& s) {
   Vec<D> a;
-  for (int k = 0; k < D; ++k) a[k] = s.s[k];
+  for (int k = 0; k < D; ++k) a[k] = s.s[2 + k];
   return a;
 }
 
@@ -192,10 +194,10 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     Vec<D> a = acceleration<D>(s);
     if (extra_acc != nullptr && ps.kind[i] != Kind::wall) a += extra_acc[i];
     ps.acc[i] = a;
-    ps.drho[i] = s.s[3];
+    ps.drho[i] = s.s[0];
     if (ps.kind[i] != Kind::wall) acc.max_acc2 = std::max(acc.max_acc2, norm2(a));
     acc.max_visc_dt = std::max(acc.max_visc_dt, s.max_visc_dt);
-    acc.pairs += static_cast<std::uint64_t>(s.s[4]);
+    acc.pairs += static_cast<std::uint64_t>(s.s[1]);
   };
   const ForceAcc total = exec::for_each_gather<ForceScratch<D>, ForceAcc>(
       static_cast<std::int64_t>(ps.size()), 512, body);

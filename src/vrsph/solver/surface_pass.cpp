@@ -41,8 +41,9 @@ void position_of(const LevelColumns<D>& c, std::size_t i, double xi[3]) {
   for (int d = 0; d < D; ++d) xi[d] = c.x[d][i];
 }
 
-// Pass 1 of particle i over its block (columns x, V): M in s0..s5 (xx, xy, yy, xz, yz, zz),
-// grad C in s6..s8, div r in s9, the Shepard sum in s10.
+// Pass 1 of particle i over its block (columns x, V): M in s0..s2 (xx, xy, yy), grad C in s3, s4,
+// div r in s5, the Shepard sum in s6 and, in 3D only, M in s7..s9 (xz, yz, zz) and grad C in s10
+// (2D sums no zeros).
 template <int D>
 void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk,
                     const double xi[3], double (&sum)[12]) {
@@ -53,29 +54,31 @@ void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk
     s.s0 = correction_matrix_pair(vf, g.rx, g.rx);
     s.s1 = correction_matrix_pair(vf, g.rx, g.ry);
     s.s2 = correction_matrix_pair(vf, g.ry, g.ry);
-    s.s3 = correction_matrix_pair(vf, g.rx, g.rz);
-    s.s4 = correction_matrix_pair(vf, g.ry, g.rz);
-    s.s5 = correction_matrix_pair(vf, g.rz, g.rz);
-    s.s6 = colour_gradient_pair(vf, g.rx);
-    s.s7 = colour_gradient_pair(vf, g.ry);
-    s.s8 = colour_gradient_pair(vf, g.rz);
-    s.s9 = position_divergence_pair(vf, g.r2);
-    s.s10 = shepard_pair(vol_j, g.w);
+    s.s3 = colour_gradient_pair(vf, g.rx);
+    s.s4 = colour_gradient_pair(vf, g.ry);
+    s.s5 = position_divergence_pair(vf, g.r2);
+    s.s6 = shepard_pair(vol_j, g.w);
+    if constexpr (D == 3) {
+      s.s7 = correction_matrix_pair(vf, g.rx, g.rz);
+      s.s8 = correction_matrix_pair(vf, g.ry, g.rz);
+      s.s9 = correction_matrix_pair(vf, g.rz, g.rz);
+      s.s10 = colour_gradient_pair(vf, g.rz);
+    }
     return s;
   };
   double unused = -1e300;
-  sweep_pairs<D, D + 1, 11, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
-                                   pair, sum, unused);
+  sweep_pairs<D, D + 1, D == 3 ? 11 : 7, false>(
+      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum, unused);
 }
 
 // M_i and grad C_i from the pass-1 slots.
 template <int D>
 void assemble_pass1(const double (&s)[12], Mat<D>& m, Vec<D>& grad_c) {
   m(0, 0) = s[0], m(0, 1) = m(1, 0) = s[1], m(1, 1) = s[2];
-  grad_c[0] = s[6], grad_c[1] = s[7];
+  grad_c[0] = s[3], grad_c[1] = s[4];
   if constexpr (D == 3) {
-    m(0, 2) = m(2, 0) = s[3], m(1, 2) = m(2, 1) = s[4], m(2, 2) = s[5];
-    grad_c[2] = s[8];
+    m(0, 2) = m(2, 0) = s[7], m(1, 2) = m(2, 1) = s[8], m(2, 2) = s[9];
+    grad_c[2] = s[10];
   }
 }
 
@@ -104,8 +107,8 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     sf.lambda[i] = lambda;
     sf.l_corr[i] = correction_from_m(m, lambda);
     sf.grad_c[i] = grad_c;
-    sf.div_r[i] = s[9];
-    sf.shepard[i] = shepard_pair(cols.vol[i], w0) + s[10];  // self term + neighbours
+    sf.div_r[i] = s[5];
+    sf.shepard[i] = shepard_pair(cols.vol[i], w0) + s[6];  // self term + neighbours
   };
   exec::for_each_with<Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
@@ -136,10 +139,11 @@ void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const
     auto pair = [=](const PairGeometry& g, const Neighbour<D + 2>& nb) {
       PairSums a;
       const double c = lambda_gradient_pair(nb[D + 1], lambda_ref, nb[D], g.f);
-      a.s0 = c * g.rx, a.s1 = c * g.ry, a.s2 = c * g.rz;
+      a.s0 = c * g.rx, a.s1 = c * g.ry;
+      if constexpr (D == 3) a.s2 = c * g.rz;
       return a;
     };
-    sweep_pairs<D, D + 2, 3, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+    sweep_pairs<D, D + 2, D, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
                                     pair, s, unused);
     Vec<D> sum;
     for (int d = 0; d < D; ++d) sum[d] = s[d];
