@@ -232,3 +232,30 @@ TEST(CliThreads, VariableResolutionIndependentOfThreadCount) {
 }
 
 }  // namespace
+
+namespace {
+
+// `vrsph bench`: its figures, and the candidate-block width changes the speed, not the pairs.
+TEST(CliBench, ReportsPairsAndMemoryPerParticle) {
+  TempDir dir;
+  dir.write("tiny.toml", kTiny);
+  std::map<int, nlohmann::json> figures;
+  for (int width : {1, 2}) {
+    const std::string json = "bench" + std::to_string(width) + ".json";
+    const CmdResult r = dir.run({"bench", "tiny.toml", "--time", "0.002", "--threads", "1",
+                                 "--cells-per-block", std::to_string(width), "--json", json});
+    ASSERT_EQ(r.status, 0) << r;
+    EXPECT_NE(r.out.find("bytes per particle"), std::string::npos) << r;
+    figures[width] = nlohmann::json::parse(read_text(dir / json));
+    EXPECT_EQ(figures[width]["cells_per_block"].get<int>(), width);
+    EXPECT_GT(figures[width]["particle_steps_per_second"].get<double>(), 0.0);
+    const double bytes = figures[width]["bytes_per_particle"].get<double>();
+    EXPECT_GT(bytes, 50.0);  // the particle arrays alone hold more
+    EXPECT_LT(bytes, 1e5);
+  }
+  EXPECT_GT(figures[2]["pairs_per_particle_step"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(figures[1]["pairs_per_particle_step"].get<double>(),
+                   figures[2]["pairs_per_particle_step"].get<double>());
+}
+
+}  // namespace

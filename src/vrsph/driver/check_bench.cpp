@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "vrsph/driver/run.hpp"
 #include "vrsph/exec/parallel.hpp"
@@ -49,9 +52,20 @@ int check_impl(CaseSpec& spec) {
   return kExitOk;
 }
 
+// A field of /proc/self/status in bytes (VmRSS: resident now, VmHWM: the peak), 0 if unknown.
+std::uint64_t status_bytes(const std::string& field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(field + ":", 0) == 0) return std::stoull(line.substr(field.size() + 1)) * 1024;
+  }
+  return 0;
+}
+
 template <int D>
 int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   spec.end_time = opt.sim_time;
+  const std::uint64_t rss_before = status_bytes("VmRSS");
   Simulation<D> sim(spec, opt.cells_per_support, opt.cells_per_block);
   const int threads = exec::thread_count();
   const auto t0 = std::chrono::steady_clock::now();
@@ -78,6 +92,13 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
       {"checks", t.checks / wall},   {"other", std::max(0.0, wall - accounted) / wall}};
   j["cells_per_support"] = opt.cells_per_support;
   j["cells_per_block"] = opt.cells_per_block;
+  // Memory of the simulation: the peak resident size less what the program held before building
+  // it (code, libraries, the case), per particle.
+  const std::uint64_t peak = status_bytes("VmHWM");
+  const double bytes_per_particle =
+      peak > rss_before ? static_cast<double>(peak - rss_before) / sim.total_particles() : 0.0;
+  j["peak_rss_bytes"] = peak;
+  j["bytes_per_particle"] = bytes_per_particle;
   fmt::print("bench {}: {} particles, {} steps to t = {:g} s on {} thread(s) in {:.2f} s\n",
              spec.name, sim.total_particles(), sim.step_count(), sim.time(), threads, wall);
   // A speed means something only against another code run on the same machine (see
@@ -89,6 +110,8 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
       "checks {:.1f}%, other {:.1f}%\n",
       100 * t.forces / wall, 100 * t.surface / wall, 100 * t.sort / wall, 100 * t.update / wall,
       100 * t.checks / wall, 100 * std::max(0.0, wall - accounted) / wall);
+  fmt::print("  {:.2f} pairs per particle-step, {:.0f} bytes per particle (peak resident)\n",
+             j["pairs_per_particle_step"].get<double>(), bytes_per_particle);
   fmt::print("{}\n", j.dump());
   if (opt.json_out) write_summary_json(*opt.json_out, j);
   return kExitOk;
