@@ -65,6 +65,13 @@ struct OutputLine {
   bool operator==(const OutputLine&) const = default;
 };
 
+struct OutputProbe {
+  std::string name;
+  Vec3d position{};  // m
+
+  bool operator==(const OutputProbe&) const = default;
+};
+
 // [fluid]
 struct FluidSpec {
   double density = 1000.0;              // rho0 (kg/m^3)
@@ -121,6 +128,7 @@ struct CaseSpec {
   bool write_vtp = true;
   bool write_csv = true;
   std::vector<OutputLine> lines;
+  std::vector<OutputProbe> probes;
 
   // [analysis]
   std::optional<double> laplace_pressure;
