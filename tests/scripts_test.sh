@@ -1,12 +1,19 @@
 #!/usr/bin/env bash
-# The shipped plotting and analysis scripts on a real (tiny) run: a two-level droplet at twice
-# the case's spacing for 4 ms. Each script must exit 0 and write a PNG (checked by its signature)
-# or the figures asked for; laplace_window.sh's mean must equal the mean of series.csv's column.
+# The shipped plotting and analysis scripts on real (tiny) runs: a two-level droplet at twice
+# the case's spacing for 4 ms, and a hydrostatic tank at 2 cm for 20 ms. Each script must exit 0
+# and write a PNG (checked by its signature) or the figures asked for; plot_run.sh's titles must
+# say what was drawn (both levels and their buffer particles; walls; rho0 g depth on the tank's
+# line; "parasitic currents" for the drop only); laplace_window.sh's mean must equal the mean of
+# series.csv's column. Without gnuplot the test is skipped (exit 77) with a message.
 #   tests/scripts_test.sh VRSPH_BINARY REPO_ROOT
 set -euo pipefail
 
 [ $# -eq 2 ] || { echo "usage: scripts_test.sh VRSPH_BINARY REPO_ROOT" >&2; exit 2; }
 vrsph=$1; root=${2%/}
+if ! command -v gnuplot > /dev/null; then
+  echo "scripts_test: skipped: gnuplot is not installed (scripts/setup.sh installs it)"
+  exit 77
+fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -21,6 +28,29 @@ out=$tmp/run
 for png in plot_line_0002 plot_pressure_0002 plot_lambda_0002 plot_max_speed plot_laplace_rmse; do
   is_png "$out/$png.png" || fail "plot_run.sh did not write $png.png: $(cat "$tmp/plot_run.log")"
 done
+said() { grep "^wrote .*/$1.png: " "$2" || fail "plot_run.sh said nothing of $1.png: $(cat "$2")"; }
+title=$(said plot_pressure_0002 "$tmp/plot_run.log")
+for want in "droplet_vr_2d (2D, 2 levels, surface tension)" "fluid (L0 " " + L1 " " buffer"; do
+  [[ "$title" == *"$want"* ]] || fail "pressure plot title lacks '$want': $title"
+done
+[[ "$(said plot_max_speed "$tmp/plot_run.log")" == *"parasitic"* ]] || fail "drop speed title"
+[[ "$(said plot_line_0002 "$tmp/plot_run.log")" == *"interpolated points"* ]] || fail "line title"
+
+# A tank at rest: walls drawn and counted, rho0 g depth on the vertical line, no parasitic currents.
+tank=$tmp/tank
+"$vrsph" run "$root/cases/hydrostatic_2d.toml" --out "$tank" --quiet --threads 1 \
+  --set resolution.dp=0.02 --set 'fluid_block.0.min=[0.02,0.02]' --set 'fluid_block.0.max=[0.98,0.5]' \
+  --set case.end_time=0.02 --set output.interval=0.02 || fail "vrsph run (tank) exited $?"
+"$root/scripts/plot_run.sh" "$tank" > "$tmp/plot_tank.log" 2>&1 || fail "plot_run.sh (tank) exited $?"
+for png in plot_line_0001 plot_pressure_0001 plot_max_speed; do
+  is_png "$tank/$png.png" || fail "plot_run.sh did not write $png.png: $(cat "$tmp/plot_tank.log")"
+done
+[[ "$(said plot_line_0001 "$tmp/plot_tank.log")" == *"rho0 g depth"* ]] || fail "tank line title"
+[[ "$(said plot_pressure_0001 "$tmp/plot_tank.log")" == *"1225 fluid, 405 wall"* ]] \
+  || fail "tank pressure title: $(said plot_pressure_0001 "$tmp/plot_tank.log")"
+if [[ "$(said plot_max_speed "$tmp/plot_tank.log")" == *"parasitic"* ]]; then
+  fail "the tank's speed plot speaks of parasitic currents"
+fi
 
 "$root/scripts/plot_window.sh" "$out" 2 lambda -0.001 0.001 0.0012 0.0022 "$tmp/window.png" \
   > /dev/null || fail "plot_window.sh exited $?"

@@ -106,6 +106,17 @@ TEST(CaseParser, BadEnumsAndShapes) {
                   {"fluid_block.0.fill = \"cells\"", "box"});
   expect_contains(error_of(m + "[[output.line]]\nname = \"a b\"\nfrom = [0, 0]\nto = [1, 0]\n"),
                   {"output.line.0.name = \"a b\"", "[A-Za-z0-9_-]+"});
+  expect_contains(
+      error_of(m + "[[output.line]]\nname = \"d_interp\"\nfrom = [0, 0]\nto = [1, 0]\n"),
+      {"output.line.0.name = \"d_interp\"", "_interp"});
+  const std::string probe = "[[output.probe]]\nname = \"c\"\nposition = [0, 0]\n";
+  expect_contains(error_of(m + probe + probe), {"output.probe.1.name = \"c\"", "duplicate"});
+  expect_contains(error_of(m + "[[output.probe]]\nname = \"c/d\"\nposition = [0, 0]\n"),
+                  {"output.probe.0.name", "[A-Za-z0-9_-]+"});
+  expect_contains(error_of(m + "[[output.probe]]\nname = \"c\"\nposition = [0, 0, 0]\n"),
+                  {"output.probe.0.position", "array of 2 numbers"});
+  expect_contains(error_of(m + "[[output.probe]]\nposition = [0, 0]\n"),
+                  {"output.probe.0.name", "missing"});
 }
 
 TEST(CaseParser, WrongVectorLength) {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -128,6 +129,35 @@ TEST(CliCheck, AppliesOverrides) {
   const CmdResult s = dir.run({"check", dam_break_2d(), "--set", "resolution.dp=0.04", "--set",
                                "numerics.shifting.coefficient=0.05"});
   EXPECT_EQ(s.status, 0) << s;
+}
+
+// Every level's fluid, buffer and wall particles, and totals that are their sums.
+TEST(CliCheck, ListsTheParticlesOfEveryLevel) {
+  TempDir dir;
+  const CmdResult r = dir.run({"check", (kCases / "droplet_vr_2d.toml").string()});
+  ASSERT_EQ(r.status, 0) << r;
+  const std::regex total(
+      R"(particles: (\d+) fluid, (\d+) buffer, (\d+) wall \((\d+) in all, 2 levels\))");
+  const std::regex level(
+      R"(level (\d) \([^)]*\): dp = [^,]+, h = [^,]+, (\d+) fluid, (\d+) buffer, (\d+) wall)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, total)) << r;
+  const long fluid = std::stol(m[1]), buffer = std::stol(m[2]), wall = std::stol(m[3]);
+  EXPECT_EQ(fluid + buffer + wall, std::stol(m[4]));
+  long sums[3] = {0, 0, 0};
+  int levels = 0;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), level);
+       it != std::sregex_iterator(); ++it, ++levels) {
+    EXPECT_EQ(std::stoi((*it)[1]), levels) << r;
+    EXPECT_GT(std::stol((*it)[2]), 0) << "level " << levels << " has fluid\n" << r;
+    EXPECT_GT(std::stol((*it)[3]), 0) << "level " << levels << " has buffer particles\n" << r;
+    for (int k = 0; k < 3; ++k) sums[k] += std::stol((*it)[k + 2]);
+  }
+  EXPECT_EQ(levels, 2) << r;
+  EXPECT_EQ(sums[0], fluid);
+  EXPECT_EQ(sums[1], buffer);
+  EXPECT_EQ(sums[2], wall);
+  EXPECT_NE(r.out.find("level 0 (base level)"), std::string::npos) << r;
 }
 
 TEST(CliCheck, ShippedCasesAreValid) {

@@ -185,7 +185,8 @@ to = [1.0, 0.05]
 }
 
 // With analysis.laplace_pressure and a line, series.csv follows the Laplace figures in time
-// (laplace_mean_interior, laplace_rmse at every output) and its last row repeats summary.json's.
+// (laplace_mean_interior, laplace_rmse on the particle strip, laplace_interp_* on the interpolated
+// line, at every output) and its last row repeats summary.json's.
 TEST(CliRun, SeriesFollowsTheLaplaceError) {
   TempDir dir;
   const fs::path out = dir / "run";
@@ -197,16 +198,31 @@ TEST(CliRun, SeriesFollowsTheLaplaceError) {
   const auto series = read_lines(out / "series.csv");
   ASSERT_EQ(series.size(), 4u);
   const auto head = split_csv(series[0]);
-  ASSERT_GE(head.size(), 2u);
-  EXPECT_EQ(head[head.size() - 2], "laplace_mean_interior") << series[0];
-  EXPECT_EQ(head.back(), "laplace_rmse") << series[0];
-  // t = 0 at rest: every particle at p = 0, so the RMSE is the Laplace value itself.
-  EXPECT_NEAR(num(split_csv(series[1]).back()), 36.4, 1e-9) << series[1];
+  auto col = [&](const std::string& name) {
+    const auto it = std::find(head.begin(), head.end(), name);
+    EXPECT_NE(it, head.end()) << name << " not in " << series[0];
+    return static_cast<std::size_t>(it - head.begin());
+  };
+  const std::size_t mean = col("laplace_mean_interior"), rmse = col("laplace_rmse");
+  const std::size_t imean = col("laplace_interp_mean_interior");
+  const std::size_t irmse = col("laplace_interp_rmse");
+  ASSERT_EQ(irmse, head.size() - 1) << series[0];
+  // t = 0 at rest: every particle at p = 0, so both RMSEs are the Laplace value itself.
+  EXPECT_NEAR(num(split_csv(series[1])[rmse]), 36.4, 1e-9) << series[1];
+  EXPECT_NEAR(num(split_csv(series[1])[irmse]), 36.4, 1e-9) << series[1];
   const auto last = split_csv(series.back());
-  const auto sj = nlohmann::json::parse(read_text(out / "summary.json"));
-  EXPECT_DOUBLE_EQ(num(last.back()), sj.at("laplace").at("rmse").get<double>());
-  EXPECT_DOUBLE_EQ(num(last[last.size() - 2]), sj.at("laplace").at("mean_interior").get<double>());
-  EXPECT_LT(num(last.back()), 36.4) << "the interior pressure has started to rise";
+  const auto lp = nlohmann::json::parse(read_text(out / "summary.json")).at("laplace");
+  EXPECT_DOUBLE_EQ(num(last[rmse]), lp.at("rmse").get<double>());
+  EXPECT_DOUBLE_EQ(num(last[mean]), lp.at("mean_interior").get<double>());
+  EXPECT_DOUBLE_EQ(num(last[irmse]), lp.at("interp_rmse").get<double>());
+  EXPECT_DOUBLE_EQ(num(last[imean]), lp.at("interp_mean_interior").get<double>());
+  EXPECT_LT(num(last[rmse]), 36.4) << "the interior pressure has started to rise";
+  // The interpolated line: points every dp/2 across the 4 mm diameter, the interior ones (2h
+  // from the ends of the points inside) counted, and a pressure that has risen as the strip's.
+  EXPECT_GT(lp.at("interp_n_points").get<int>(), 20);
+  EXPECT_GT(num(last[imean]), 10.0);
+  EXPECT_LT(num(last[irmse]), 36.4);
+  EXPECT_EQ(read_lines(out / "line_diameter_interp_0002.csv").size(), 1u + 41u);
 }
 
 TEST(CliRun, ResolvedCaseReproducesTheRun) {

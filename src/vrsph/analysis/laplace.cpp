@@ -54,6 +54,18 @@ LaplaceError laplace_error(std::span<const LineSample<D>> samples, double expect
 }
 
 template <int D>
+LaplaceError laplace_error(std::span<const LineInterpSample<D>> samples, double expected,
+                           double h_first, double h_last) {
+  std::vector<double> s, p;
+  for (const auto& q : samples) {
+    if (!q.f.inside()) continue;
+    s.push_back(q.s);
+    p.push_back(q.f.p);
+  }
+  return laplace_error(s, p, expected, h_first, h_last);
+}
+
+template <int D>
 LaplaceError line_laplace_error(const ParticleSet<D>& ps, const OutputLine& line, double expected,
                                 double h, double dp) {
   const auto samples = sample_line<D>(ps, {}, to_vec<D>(line.from), to_vec<D>(line.to), 0.5 * dp);
@@ -62,6 +74,10 @@ LaplaceError line_laplace_error(const ParticleSet<D>& ps, const OutputLine& line
 
 template LaplaceError laplace_error<2>(std::span<const LineSample<2>>, double, double, double);
 template LaplaceError laplace_error<3>(std::span<const LineSample<3>>, double, double, double);
+template LaplaceError laplace_error<2>(std::span<const LineInterpSample<2>>, double, double,
+                                       double);
+template LaplaceError laplace_error<3>(std::span<const LineInterpSample<3>>, double, double,
+                                       double);
 template LaplaceError line_laplace_error<2>(const ParticleSet<2>&, const OutputLine&, double,
                                             double, double);
 template LaplaceError line_laplace_error<3>(const ParticleSet<3>&, const OutputLine&, double,

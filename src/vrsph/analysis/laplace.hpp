@@ -1,8 +1,9 @@
 // Pressure-profile error against the Laplace pressure (docs/physics.md section 11, the poster's
-// table): RMSE of the particle pressures along a line (the droplet diameter) against p = sigma / R,
-// NRMSE = RMSE / p_expected. `rmse_all` uses every particle of the line; `rmse` and
-// `mean_interior` only those at least 2h from both ends of the line's particle set, away from
-// the free-surface rows where the pressure falls to zero.
+// table): RMSE of the pressures along a line (the droplet diameter) against p = sigma / R,
+// NRMSE = RMSE / p_expected, on the line's particle strip or on its interpolated points.
+// `rmse_all` uses every sample of the line; `rmse` and `mean_interior` only those at least 2h
+// from both ends of the line's sample set, away from the free-surface rows where the pressure
+// falls to zero.
 #pragma once
 
 #include <cstddef>
@@ -36,6 +37,12 @@ LaplaceError laplace_error(std::span<const double> s, std::span<const double> p,
 template <int D>
 LaplaceError laplace_error(std::span<const LineSample<D>> samples, double expected, double h_first,
                            double h_last);
+
+// The same for the points of an interpolated line that lie inside the fluid (those outside are
+// left out, and the 2h margins are taken from the first and last point inside).
+template <int D>
+LaplaceError laplace_error(std::span<const LineInterpSample<D>> samples, double expected,
+                           double h_first, double h_last);
 
 // The same for the particles of one level along an [[output.line]] (within dp/2 of it, as the
 // line profile files); ps.p must be current.

@@ -16,28 +16,42 @@
 namespace vrsph {
 namespace {
 
+// The particle counts: all levels together, then (with refinement) each level's fluid, buffer
+// and wall particles and mass points.
+template <int D>
+void print_particle_counts(const Simulation<D>& sim, const CaseSpec& spec) {
+  const std::size_t nl = sim.level_count();
+  if (nl == 1) {
+    const auto& ps = sim.particles();
+    fmt::print("  particles: {} fluid, {} wall ({} in all)\n", ps.count(Kind::fluid),
+               ps.count(Kind::wall), ps.size());
+  } else {
+    fmt::print("  particles: {} fluid, {} buffer, {} wall ({} in all, {} levels)\n",
+               sim.count(Kind::fluid), sim.count(Kind::buffer), sim.count(Kind::wall),
+               sim.total_particles(), nl);
+  }
+  fmt::print("  dp = {:g} m, h = {:g} m ({:g} dp), particle mass = {:g} kg\n", spec.dp,
+             sim.params().h, spec.h_over_dp, sim.params().mass);
+  if (nl == 1) return;
+  for (std::size_t l = 0; l < nl; ++l) {
+    const auto& L = sim.level(l);
+    const std::string where =
+        l == 0 ? std::string("base level")
+               : fmt::format("inside refinement box, parent level {}", sim.link(l).region.parent);
+    fmt::print(
+        "  level {} ({}): dp = {:g} m, h = {:g} m, {} fluid, {} buffer, {} wall, "
+        "{} mass points\n",
+        l, where, L.prm.dp, L.prm.h, L.ps.count(Kind::fluid), L.ps.count(Kind::buffer),
+        L.ps.count(Kind::wall), sim.link(l).mass_points.size());
+  }
+}
+
 template <int D>
 int check_impl(CaseSpec& spec) {
   Simulation<D> sim(spec);
-  const auto& ps = sim.particles();
   const auto& grid = sim.grid();
   fmt::print("case {} ({}D) is valid\n", spec.name, D);
-  fmt::print("  particles: {} fluid, {} wall ({} in all)\n", ps.count(Kind::fluid),
-             ps.count(Kind::wall), ps.size());
-  fmt::print("  dp = {:g} m, h = {:g} m ({:g} dp), particle mass = {:g} kg\n", spec.dp,
-             sim.params().h, spec.h_over_dp, sim.params().mass);
-  for (std::size_t l = 1; l < sim.level_count(); ++l) {
-    const auto& L = sim.level(l);
-    fmt::print(
-        "  level {} (inside refinement box, parent level {}): dp = {:g} m, h = {:g} m, "
-        "{} fluid, {} buffer, {} wall, {} mass points\n",
-        l, sim.link(l).region.parent, L.prm.dp, L.prm.h, L.ps.count(Kind::fluid),
-        L.ps.count(Kind::buffer), L.ps.count(Kind::wall), sim.link(l).mass_points.size());
-  }
-  if (sim.level_count() > 1) {
-    fmt::print("  level 0 (coarsest): {} buffer, {} mass points\n", ps.count(Kind::buffer),
-               sim.link(0).mass_points.size());
-  }
+  print_particle_counts(sim, spec);
   fmt::print("  c0 = {:.6g} m/s (max_speed {:.6g} m/s), B = {:.6g} Pa\n", sim.setup().c0,
              sim.setup().max_speed, sim.params().eos.b);
   fmt::print("  first dt = {:.6g} s, about {:.0f} steps to t = {:g} s at that dt\n", sim.dt_next(),

@@ -41,9 +41,9 @@ double next_output_time(const CaseSpec& spec, double t) {
 
 // The files a run writes (and --force removes).
 bool is_run_file(const std::string& n) {
-  return n.starts_with("particles_") || n.starts_with("line_") || n == "particles.pvd" ||
-         n == "series.csv" || n == "summary.json" || n == "case.toml" || n == "checkpoint.bin" ||
-         n == "refinement_boxes.vtp" || n == RunLog::kFileName;
+  return n.starts_with("particles_") || n.starts_with("line_") || n.starts_with("probe_") ||
+         n == "particles.pvd" || n == "series.csv" || n == "summary.json" || n == "case.toml" ||
+         n == "checkpoint.bin" || n == "refinement_boxes.vtp" || n == RunLog::kFileName;
 }
 
 // A fresh run (its folder locked) refuses to overwrite an earlier run unless forced; forced, it

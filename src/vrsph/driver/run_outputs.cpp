@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "vrsph/analysis/laplace.hpp"
+#include "vrsph/core/to_vec.hpp"
+#include "vrsph/driver/fluid_samples.hpp"
 #include "vrsph/driver/level_samples.hpp"
 #include "vrsph/driver/run_checkpoint.hpp"
 #include "vrsph/output/build_info.hpp"
@@ -85,17 +87,52 @@ double laplace_value(const SeriesInputs& in, double LaplaceError::*f) {
   return in.laplace.n_points > 0 ? in.laplace.*f : std::numeric_limits<double>::quiet_NaN();
 }
 
+// The interpolated line's Laplace figures, NaN when no point of the line lies in the fluid.
+double laplace_interp_value(const SeriesInputs& in, double LaplaceError::*f) {
+  return in.laplace_interp.n_points > 0 ? in.laplace_interp.*f
+                                        : std::numeric_limits<double>::quiet_NaN();
+}
+
+// wall<N>_fx, wall<N>_fy[, wall<N>_fz]: the fluid's force on each wall block.
+void add_wall_columns(std::vector<SeriesExtraColumn>& c, std::size_t blocks, int dim) {
+  for (std::size_t b = 0; b < blocks; ++b) {
+    for (int k = 0; k < dim; ++k) {
+      c.push_back({fmt::format("wall{}_f{}", b, "xyz"[k]), [b, k](const SeriesInputs& in) {
+                     return in.wall_forces[b][static_cast<std::size_t>(k)];
+                   }});
+    }
+  }
+}
+
 std::vector<SeriesExtraColumn> extra_columns(const CaseSpec& spec) {
   std::vector<SeriesExtraColumn> c;
   add_level_columns(c, spec.refinements.size() + 1);
+  add_wall_columns(c, spec.wall_blocks.size(), spec.dimension);
   if (has_laplace(spec)) {
     c.push_back({"laplace_mean_interior", [](const SeriesInputs& in) {
                    return laplace_value(in, &LaplaceError::mean_interior);
                  }});
     c.push_back({"laplace_rmse",
                  [](const SeriesInputs& in) { return laplace_value(in, &LaplaceError::rmse); }});
+    c.push_back({"laplace_interp_mean_interior", [](const SeriesInputs& in) {
+                   return laplace_interp_value(in, &LaplaceError::mean_interior);
+                 }});
+    c.push_back({"laplace_interp_rmse", [](const SeriesInputs& in) {
+                   return laplace_interp_value(in, &LaplaceError::rmse);
+                 }});
   }
   return c;
+}
+
+template <int D>
+std::vector<ProbeWriter<D>> open_probes(const CaseSpec& spec, const std::filesystem::path& dir,
+                                        bool fresh, double t) {
+  std::vector<ProbeWriter<D>> out;
+  for (const OutputProbe& p : spec.probes) {
+    const std::filesystem::path path = dir / probe_file_name(p.name);
+    out.push_back(fresh ? ProbeWriter<D>(path) : ProbeWriter<D>::resume(path, t));
+  }
+  return out;
 }
 
 std::vector<std::string> column_names(const std::vector<SeriesExtraColumn>& columns) {
@@ -110,6 +147,32 @@ LaplaceError first_line_laplace(const Simulation<D>& sim, const CaseSpec& spec) 
   return levels_laplace_error(sim, spec.lines.front(), *spec.laplace_pressure);
 }
 
+// The same on the first line's interpolated points.
+template <int D>
+LaplaceError first_line_interp_laplace(const Simulation<D>& sim, const CaseSpec& spec) {
+  const auto points = interpolate_line(sim, spec.lines.front());
+  return interp_laplace_error<D>(sim, points, *spec.laplace_pressure);
+}
+
+// summary.json's `laplace`: the particle strip's figures, then the interpolated line's.
+template <int D>
+nlohmann::json laplace_json(const Simulation<D>& sim, const CaseSpec& spec) {
+  const LaplaceError e = first_line_laplace(sim, spec);
+  const LaplaceError ei = first_line_interp_laplace(sim, spec);
+  return {{"expected", e.expected},
+          {"mean_interior", e.mean_interior},
+          {"rmse", e.rmse},
+          {"nrmse", e.nrmse},
+          {"rmse_all", e.rmse_all},
+          {"n_points", e.n_points},
+          {"line", spec.lines.front().name},
+          {"interp_mean_interior", ei.mean_interior},
+          {"interp_rmse", ei.rmse},
+          {"interp_nrmse", ei.nrmse},
+          {"interp_rmse_all", ei.rmse_all},
+          {"interp_n_points", ei.n_points}};
+}
+
 }  // namespace
 
 template <int D>
@@ -119,13 +182,25 @@ RunOutputs<D>::RunOutputs(const CaseSpec& spec, std::filesystem::path dir, bool 
       case_text_(physical_case_text(spec)),
       pvd_(open_pvd(dir_ / "particles.pvd", fresh, t)),
       extras_(extra_columns(spec)),
-      series_(open_series(dir_ / "series.csv", fresh, t, column_names(extras_))) {}
+      series_(open_series(dir_ / "series.csv", fresh, t, column_names(extras_))),
+      probes_(open_probes<D>(spec, dir_, fresh, t)) {}
 
 template <int D>
 void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   sim.update_pressure();
+  write_snapshot(sim, index);
+  SeriesInputs in;
+  write_lines(sim, index, in);
+  for (std::size_t k = 0; k < probes_.size(); ++k)
+    probes_[k].append(sim.time(), sample_fluid(sim, to_vec<D>(spec_.probes[k].position)));
+  append_series(sim, in);
+  write_checkpoint(sim, index);
+}
+
+// All levels in one snapshot (the `level` column tells them apart).
+template <int D>
+void RunOutputs<D>::write_snapshot(Simulation<D>& sim, int index) {
   const std::size_t nl = sim.level_count();
-  // All levels in one snapshot (the `level` column tells them apart).
   MergedLevels<D> merged;
   if (nl > 1) {
     std::vector<const ParticleSet<D>*> sets;
@@ -147,15 +222,33 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
   }
   if (spec_.write_csv)
     write_particles_csv<D>(dir_ / snapshot_file_name(index, "csv"), ps, extras, level, format);
-  for (const OutputLine& line : spec_.lines) {
+}
+
+template <int D>
+void RunOutputs<D>::write_lines(const Simulation<D>& sim, int index, SeriesInputs& in) const {
+  for (std::size_t k = 0; k < spec_.lines.size(); ++k) {
+    const OutputLine& line = spec_.lines[k];
     const auto samples = sample_levels(sim, line);
     write_line_samples<D>(dir_ / line_file_name(line.name, index), samples);
+    const auto points = interpolate_line(sim, line);
+    write_line_interp<D>(dir_ / line_interp_file_name(line.name, index), points);
+    if (k > 0 || !has_laplace(spec_)) continue;
+    in.laplace = levels_laplace_error(sim, line, *spec_.laplace_pressure);
+    in.laplace_interp = interp_laplace_error<D>(sim, points, *spec_.laplace_pressure);
   }
-  // The series row: the fixed columns summed over levels, then the extra columns in list order.
-  SeriesInputs in;
+}
+
+// The series row: the fixed columns summed over levels, then the extra columns in list order.
+template <int D>
+void RunOutputs<D>::append_series(const Simulation<D>& sim, SeriesInputs& in) {
   in.counters = &sim.counters();
+  for (const Vec<D>& f : sim.wall_block_forces()) {
+    std::array<double, 3> a{};
+    for (int k = 0; k < D; ++k) a[static_cast<std::size_t>(k)] = f[k];
+    in.wall_forces.push_back(a);
+  }
   SeriesRow row;
-  for (std::size_t l = 0; l < nl; ++l) {
+  for (std::size_t l = 0; l < sim.level_count(); ++l) {
     in.levels.push_back(compute_series_row<D>(sim.level(l).ps, sim.time(),
                                               static_cast<long>(sim.step_count()), sim.dt_last()));
     if (l == 0)
@@ -163,10 +256,8 @@ void RunOutputs<D>::write(Simulation<D>& sim, int index) {
     else
       accumulate_series_row(row, in.levels[l]);
   }
-  if (has_laplace(spec_)) in.laplace = first_line_laplace(sim, spec_);
   for (const SeriesExtraColumn& c : extras_) row.extra.push_back(c.value(in));
   series_.append(row);
-  write_checkpoint(sim, index);
 }
 
 // Everything needed to continue bit for bit from this state.
@@ -225,16 +316,7 @@ nlohmann::json RunOutputs<D>::summary(const Simulation<D>& sim, bool completed, 
   const PassTimes& t = sim.pass_times();
   j["pass_seconds"] = {{"sort", t.sort},     {"surface", t.surface}, {"forces", t.forces},
                        {"update", t.update}, {"checks", t.checks},   {"coupling", t.coupling}};
-  if (has_laplace(spec_)) {
-    const LaplaceError e = first_line_laplace(sim, spec_);
-    j["laplace"] = {{"expected", e.expected},
-                    {"mean_interior", e.mean_interior},
-                    {"rmse", e.rmse},
-                    {"nrmse", e.nrmse},
-                    {"rmse_all", e.rmse_all},
-                    {"n_points", e.n_points},
-                    {"line", spec_.lines.front().name}};
-  }
+  if (has_laplace(spec_)) j["laplace"] = laplace_json(sim, spec_);
   return j;
 }
 

@@ -1,7 +1,9 @@
-// Everything a run writes at an output time: snapshot (vtp/csv + pvd), line profiles, a series
-// row and the checkpoint; plus the final summary.json.
+// Everything a run writes at an output time: snapshot (vtp/csv + pvd), line profiles (particle
+// strip and interpolated), a row of every probe file, a series row and the checkpoint; plus the
+// final summary.json.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -9,6 +11,7 @@
 #include <vector>
 
 #include "vrsph/analysis/laplace.hpp"
+#include "vrsph/output/probe_series.hpp"
 #include "vrsph/output/series.hpp"
 #include "vrsph/output/snapshot.hpp"
 #include "vrsph/setup/case_spec.hpp"
@@ -20,7 +23,9 @@ namespace vrsph {
 struct SeriesInputs {
   std::vector<SeriesRow> levels;  // the fixed columns of each level alone
   const RunCounters* counters = nullptr;
-  LaplaceError laplace;  // only with a Laplace check (analysis.laplace_pressure and a line)
+  LaplaceError laplace;         // only with a Laplace check (analysis.laplace_pressure and a line)
+  LaplaceError laplace_interp;  // the same on the interpolated line
+  std::vector<std::array<double, 3>> wall_forces;  // the fluid's force on each wall block (N)
 };
 
 // An extra series.csv column: its name in the header and its value in a row. The list of them,
@@ -49,12 +54,18 @@ class RunOutputs {
   const std::filesystem::path& dir() const { return dir_; }
 
  private:
+  void write_snapshot(Simulation<D>& sim, int index);
+  // The files of every line; the Laplace figures of the first line into `in`.
+  void write_lines(const Simulation<D>& sim, int index, SeriesInputs& in) const;
+  void append_series(const Simulation<D>& sim, SeriesInputs& in);
+
   const CaseSpec& spec_;
   std::filesystem::path dir_;
   std::string case_text_;  // the physical keys, checkpointed to refuse a resume of another case
   PvdCollection pvd_;
   std::vector<SeriesExtraColumn> extras_;
   SeriesWriter series_;
+  std::vector<ProbeWriter<D>> probes_;  // one per [[output.probe]], in case order
 };
 
 }  // namespace vrsph

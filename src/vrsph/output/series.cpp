@@ -1,18 +1,14 @@
 // series.csv writer and the per-step global diagnostics (see series.hpp).
 #include "vrsph/output/series.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 
 #include "vrsph/output/atomic_file.hpp"
+#include "vrsph/output/csv_rows.hpp"
 
 namespace vrsph {
 
@@ -49,22 +45,10 @@ void accumulate_series_row(SeriesRow& row, const SeriesRow& other) {
 
 namespace {
 
-std::vector<std::string> split(std::string_view line, char sep) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t k = 0; k <= line.size(); ++k) {
-    if (k == line.size() || line[k] == sep) {
-      parts.emplace_back(line.substr(start, k - start));
-      start = k + 1;
-    }
-  }
-  return parts;
-}
-
 // Extra column names from a header line; throws unless it starts with the fixed columns.
 std::vector<std::string> extras_from_header(const std::string& header,
                                             const std::filesystem::path& path) {
-  const std::vector<std::string> names = split(header, ',');
+  const std::vector<std::string> names = split_fields(header);
   bool fixed = names.size() >= kSeriesColumns.size();
   for (std::size_t k = 0; fixed && k < kSeriesColumns.size(); ++k)
     fixed = names[k] == kSeriesColumns[k].name;
@@ -77,36 +61,6 @@ constexpr std::size_t column_index(std::string_view name) {
   for (std::size_t k = 0; k < kSeriesColumns.size(); ++k)
     if (kSeriesColumns[k].name == name) return k;
   return kSeriesColumns.size();
-}
-
-// True if `line` has `n_columns` fields and its t parses and is <= up_to_time.
-bool keep_row(const std::string& line, std::size_t n_columns, double up_to_time) {
-  const std::vector<std::string> fields = split(line, ',');
-  if (fields.size() != n_columns) return false;
-  constexpr std::size_t kt = column_index("t");
-  static_assert(kt < kSeriesColumns.size());
-  const std::string& f = fields[kt];
-  double t = 0.0;
-  const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), t);
-  return ec == std::errc() && ptr == f.data() + f.size() && t <= up_to_time;
-}
-
-// Appends `text` with one write() and fsyncs; throws with the path and errno text on failure.
-void append_durably(const std::filesystem::path& path, std::string_view text) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  int err = fd < 0 ? errno : 0;
-  if (err == 0) {
-    const ssize_t n = ::write(fd, text.data(), text.size());
-    if (n < 0)
-      err = errno;
-    else if (static_cast<std::size_t>(n) != text.size())
-      err = EIO;
-    if (err == 0 && ::fsync(fd) != 0) err = errno;
-    ::close(fd);
-  }
-  if (err != 0)
-    throw std::runtime_error(
-        fmt::format("cannot append to '{}': {}", path.string(), std::strerror(err)));
 }
 
 }  // namespace
@@ -135,8 +89,7 @@ SeriesWriter SeriesWriter::resume(const std::filesystem::path& path, double up_t
   if (!std::filesystem::exists(path)) return SeriesWriter(path, std::move(extra_columns));
   const std::string text = read_text_file(path);
   // Only newline-terminated lines count: a trailing partial line is dropped.
-  std::vector<std::string> lines = split(text.substr(0, text.rfind('\n') + 1), '\n');
-  lines.pop_back();  // the empty piece after the last '\n'
+  const std::vector<std::string> lines = complete_lines(text);
   if (lines.empty()) return SeriesWriter(path, std::move(extra_columns));
   std::vector<std::string> extras = extras_from_header(lines[0], path);
   if (!extra_columns.empty() && extra_columns != extras)
@@ -144,8 +97,10 @@ SeriesWriter SeriesWriter::resume(const std::filesystem::path& path, double up_t
   SeriesWriter w(NoInit{}, path, std::move(extras));
   std::string kept = lines[0] + "\n";
   const std::size_t n_columns = kSeriesColumns.size() + w.extra_.size();
+  constexpr std::size_t kt = column_index("t");
+  static_assert(kt < kSeriesColumns.size());
   for (std::size_t k = 1; k < lines.size(); ++k)
-    if (keep_row(lines[k], n_columns, up_to_time)) kept += lines[k] + "\n";
+    if (row_up_to(lines[k], n_columns, kt, up_to_time)) kept += lines[k] + "\n";
   write_file_atomic(path, kept);
   return w;
 }

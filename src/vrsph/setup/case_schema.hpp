@@ -41,9 +41,10 @@ inline constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radiu
 inline constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
 inline constexpr std::string_view kDomainKeys[] = {"min", "max", "max_lost_fraction"};
 inline constexpr std::string_view kRefinementKeys[] = {"min", "max", "dp_ratio", "buffer_width"};
-inline constexpr std::string_view kOutputKeys[] = {"interval", "formats", "precision",
-                                                   "compression", "line"};
+inline constexpr std::string_view kOutputKeys[] = {"interval",    "formats", "precision",
+                                                   "compression", "line",    "probe"};
 inline constexpr std::string_view kLineKeys[] = {"name", "from", "to"};
+inline constexpr std::string_view kProbeKeys[] = {"name", "position"};
 inline constexpr std::string_view kAnalysisKeys[] = {"laplace_pressure"};
 
 // One table of the schema: its dotted path ("" for the top level), its allowed keys, and whether
@@ -71,6 +72,7 @@ inline constexpr SchemaTable kCaseSchema[] = {
     {"refinement", kRefinementKeys, true},
     {"output", kOutputKeys},
     {"output.line", kLineKeys, true},
+    {"output.probe", kProbeKeys, true},
     {"analysis", kAnalysisKeys},
 };
 

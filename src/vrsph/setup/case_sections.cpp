@@ -214,8 +214,39 @@ RefinementBox parse_refinement(const TableReader& r, const CaseSpec& spec) {
   return b;
 }
 
+// [[output.line]] segments: names unique, fit for a file name and not ending in "_interp" (the
+// interpolated line of "a" is line_a_interp_NNNN.csv, which a line "a_interp" would overwrite).
+void parse_lines(const TableReader& r, CaseSpec& spec) {
+  std::set<std::string> names;
+  for (const auto& lr : r.table_array("line", kLineKeys)) {
+    OutputLine line;
+    line.name = lr.req("name", lr.opt_string("name"));
+    lr.require("name", valid_file_fragment(line.name), "must match [A-Za-z0-9_-]+");
+    lr.require("name", !line.name.ends_with("_interp"),
+               "must not end in \"_interp\" (reserved for the interpolated line files)");
+    lr.require("name", names.insert(line.name).second, "duplicate line name");
+    line.from = lr.req("from", lr.opt_vector("from", spec.dimension));
+    line.to = lr.req("to", lr.opt_vector("to", spec.dimension));
+    lr.require("to", line.to != line.from, "must differ from `from` (zero-length line)");
+    spec.lines.push_back(line);
+  }
+}
+
+// [[output.probe]] points: names unique and fit for a file name.
+void parse_probes(const TableReader& r, CaseSpec& spec) {
+  std::set<std::string> names;
+  for (const auto& pr : r.table_array("probe", kProbeKeys)) {
+    OutputProbe probe;
+    probe.name = pr.req("name", pr.opt_string("name"));
+    pr.require("name", valid_file_fragment(probe.name), "must match [A-Za-z0-9_-]+");
+    pr.require("name", names.insert(probe.name).second, "duplicate probe name");
+    probe.position = pr.req("position", pr.opt_vector("position", spec.dimension));
+    spec.probes.push_back(probe);
+  }
+}
+
 // [output]: interval >= 0, formats from {"vtp", "csv"}, precision and compression of the
-// snapshots, [[output.line]] segments.
+// snapshots, [[output.line]] segments, [[output.probe]] points.
 void parse_output(const TableReader& r, CaseSpec& spec) {
   spec.output_interval = r.opt_number("interval", kNonNegative).value_or(spec.output_interval);
   if (const auto formats = r.opt_string_array("formats")) {
@@ -228,17 +259,8 @@ void parse_output(const TableReader& r, CaseSpec& spec) {
   spec.output_precision = r.opt_enum("precision", kPrecisionNames).value_or(spec.output_precision);
   spec.output_compression =
       r.opt_enum("compression", kCompressionNames).value_or(spec.output_compression);
-  std::set<std::string> names;
-  for (const auto& lr : r.table_array("line", kLineKeys)) {
-    OutputLine line;
-    line.name = lr.req("name", lr.opt_string("name"));
-    lr.require("name", valid_file_fragment(line.name), "must match [A-Za-z0-9_-]+");
-    lr.require("name", names.insert(line.name).second, "duplicate line name");
-    line.from = lr.req("from", lr.opt_vector("from", spec.dimension));
-    line.to = lr.req("to", lr.opt_vector("to", spec.dimension));
-    lr.require("to", line.to != line.from, "must differ from `from` (zero-length line)");
-    spec.lines.push_back(line);
-  }
+  parse_lines(r, spec);
+  parse_probes(r, spec);
 }
 
 }  // namespace

@@ -69,6 +69,13 @@ struct OutputLine {
   bool operator==(const OutputLine&) const = default;
 };
 
+struct OutputProbe {
+  std::string name;
+  Vec3d position{};  // m
+
+  bool operator==(const OutputProbe&) const = default;
+};
+
 // [fluid]
 struct FluidSpec {
   double density = 1000.0;              // rho0 (kg/m^3)
@@ -127,6 +134,7 @@ struct CaseSpec {
   OutputPrecision output_precision = OutputPrecision::float64;
   OutputCompression output_compression = OutputCompression::none;
   std::vector<OutputLine> lines;
+  std::vector<OutputProbe> probes;
 
   // [analysis]
   std::optional<double> laplace_pressure;

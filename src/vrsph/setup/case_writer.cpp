@@ -163,7 +163,7 @@ void write_domain(Writer& w, const CaseSpec& s) {
   }
 }
 
-// [output], [[output.line]] and [analysis].
+// [output], [[output.line]], [[output.probe]] and [analysis].
 void write_output(Writer& w, const CaseSpec& s) {
   w.header("[output]");
   w.kv("interval", num(s.output_interval), "s; 0 = first and last snapshot only");
@@ -180,6 +180,11 @@ void write_output(Writer& w, const CaseSpec& s) {
     w.kv("name", toml_quote(line.name));
     w.kv("from", vec(line.from, s.dimension), "m");
     w.kv("to", vec(line.to, s.dimension), "m");
+  }
+  for (const auto& probe : s.probes) {
+    w.header("[[output.probe]]");
+    w.kv("name", toml_quote(probe.name));
+    w.kv("position", vec(probe.position, s.dimension), "m");
   }
   w.header("[analysis]");
   if (s.laplace_pressure) {

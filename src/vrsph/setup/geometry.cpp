@@ -167,6 +167,7 @@ InitialSet<D> build_particles(const CaseSpec& spec) {
     }
   }
   for (const WallBlock& w : spec.wall_blocks) {
+    out.wall_block_first.push_back(ps.size());
     auto add = [&](const Vec<D>& x) {
       ps.push_back(next_id++, Kind::wall, x, Vec<D>{}, spec.fluid.density, mass);
       out.initial_pressure.push_back(0.0);

@@ -24,6 +24,9 @@ struct InitialSet {
   ParticleSet<D> particles;
   double fluid_height = 0.0;  // extent of the fluid along the vertical axis (for c0 = f sqrt(g H))
   std::vector<double> initial_pressure;  // per particle: its fluid block's `pressure` (0: none)
+  // Index of the first particle of each [[wall_block]]: block b holds the particles from
+  // wall_block_first[b] up to the next block's first (or the end).
+  std::vector<std::size_t> wall_block_first;
 };
 
 // Positions, velocities and masses; densities are rho0 (see apply_hydrostatic_density).

@@ -76,10 +76,19 @@ InitialSet<D> level_fill(const CaseSpec& spec, double dp) {
   return build_particles<D>(s);
 }
 
+namespace {
+// The wall block of particle i of a fill (its index in `first`, the blocks' first particles).
+std::size_t wall_block_of(const std::vector<std::size_t>& first, std::size_t i) {
+  std::size_t b = 0;
+  while (b + 1 < first.size() && first[b + 1] <= i) ++b;
+  return b;
+}
+}  // namespace
+
 template <int D>
 ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
                                const SolverParams<D>& prm, std::uint64_t first_id,
-                               InitialSet<D> init) {
+                               InitialSet<D> init, std::vector<IdRange>* wall_ids) {
   ParticleSet<D>& all = init.particles;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (init.initial_pressure[i] != 0.0) all.rho[i] = prm.eos.density(init.initial_pressure[i]);
@@ -89,11 +98,16 @@ ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
     apply_hydrostatic_density<D>(all, prm.gravity, spec.fluid.density, lay.dp, prm.eos);
   }
   ParticleSet<D> ps;
+  std::vector<IdRange> ranges(init.wall_block_first.size());
   std::uint64_t id = first_id;
   for (std::size_t i = 0; i < all.size(); ++i) {
     Kind k = all.kind[i];
     if (k == Kind::wall) {
       if (!lay.region.covers(all.pos[i], prm.kernel.support())) continue;
+      // A block's kept walls get consecutive ids: the fill lists blocks one after the other.
+      IdRange& r = ranges[wall_block_of(init.wall_block_first, i)];
+      if (r.end == r.first) r.first = id;
+      r.end = id + 1;
     } else {
       const Zone z = lay.region.classify(all.pos[i]).zone;
       if (z == Zone::outside) continue;
@@ -101,6 +115,7 @@ ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
     }
     ps.push_back(id++, k, all.pos[i], all.vel[i], all.rho[i], all.mass[i]);
   }
+  if (wall_ids != nullptr) *wall_ids = std::move(ranges);
   return ps;
 }
 
@@ -111,8 +126,10 @@ template SolverParams<3> level_params<3>(const CaseSpec&, double, double);
 template InitialSet<2> level_fill<2>(const CaseSpec&, double);
 template InitialSet<3> level_fill<3>(const CaseSpec&, double);
 template ParticleSet<2> level_particles<2>(const CaseSpec&, const LevelLayout<2>&,
-                                           const SolverParams<2>&, std::uint64_t, InitialSet<2>);
+                                           const SolverParams<2>&, std::uint64_t, InitialSet<2>,
+                                           std::vector<IdRange>*);
 template ParticleSet<3> level_particles<3>(const CaseSpec&, const LevelLayout<3>&,
-                                           const SolverParams<3>&, std::uint64_t, InitialSet<3>);
+                                           const SolverParams<3>&, std::uint64_t, InitialSet<3>,
+                                           std::vector<IdRange>*);
 
 }  // namespace vrsph

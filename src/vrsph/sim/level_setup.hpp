@@ -9,6 +9,7 @@
 #include "vrsph/setup/case_spec.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/solver/params.hpp"
+#include "vrsph/solver/wall_reaction.hpp"
 #include "vrsph/vres/levels.hpp"
 
 namespace vrsph {
@@ -27,10 +28,10 @@ template <int D>
 InitialSet<D> level_fill(const CaseSpec& spec, double dp);
 
 // The particles of one level from its fill (level_fill at the level's dp), ids from first_id
-// (see level_setup.cpp).
+// (see level_setup.cpp). wall_ids (when given) gets the ids of each wall block's particles.
 template <int D>
 ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
                                const SolverParams<D>& prm, std::uint64_t first_id,
-                               InitialSet<D> fill);
+                               InitialSet<D> fill, std::vector<IdRange>* wall_ids = nullptr);
 
 }  // namespace vrsph

@@ -65,6 +65,7 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
     : spec_(spec) {
   const std::vector<LevelLayout<D>> layout = make_level_layout<D>(spec);
   levels_.resize(layout.size());
+  wall_ids_.resize(layout.size());
 
   InitialSet<D> init0 = level_fill<D>(spec, spec.dp);
   setup_ = resolve_setup<D>(spec, init0);
@@ -75,7 +76,8 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
     Level<D>& L = levels_[k];
     L.prm = level_params<D>(spec, layout[k].dp, setup_.c0);
     L.ps = level_particles<D>(spec, layout[k], L.prm, next_id,
-                              k == 0 ? std::move(init0) : level_fill<D>(spec, layout[k].dp));
+                              k == 0 ? std::move(init0) : level_fill<D>(spec, layout[k].dp),
+                              &wall_ids_[k]);
     next_id += L.ps.size();
     links[k].region = layout[k].region;
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
@@ -162,6 +164,16 @@ void Simulation<D>::update_pressure() {
     L.ps.p.resize(L.ps.size());
     for (std::size_t i = 0; i < L.ps.size(); ++i) L.ps.p[i] = L.prm.eos.pressure(L.ps.rho[i]);
   }
+}
+
+template <int D>
+std::vector<Vec<D>> Simulation<D>::wall_block_forces() const {
+  std::vector<Vec<D>> total(spec_.wall_blocks.size());
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const std::vector<Vec<D>> f = vrsph::wall_block_forces(levels_[l], wall_ids_[l]);
+    for (std::size_t b = 0; b < total.size() && b < f.size(); ++b) total[b] += f[b];
+  }
+  return total;
 }
 
 // Next dt: the minimum over levels (one global dt, docs/physics.md section 10); `s` holds the

@@ -19,6 +19,7 @@
 #include "vrsph/solver/params.hpp"
 #include "vrsph/solver/surface_pass.hpp"
 #include "vrsph/solver/timestep.hpp"
+#include "vrsph/solver/wall_reaction.hpp"
 #include "vrsph/vres/level_coupling.hpp"
 
 namespace vrsph {
@@ -117,6 +118,10 @@ class Simulation {
   // Pressure of every particle from its current density (outputs).
   void update_pressure();
 
+  // The force of the fluid on each [[wall_block]] (case order), summed over the levels' wall
+  // particles of that block (solver/wall_reaction.hpp); ps.p must be current (update_pressure).
+  std::vector<Vec<D>> wall_block_forces() const;
+
   // Recomputes lambda, normals, curvature, ... of every level for the current state (outputs);
   // surface_fields(k) then reads level k.
   void update_surface_fields();
@@ -140,6 +145,7 @@ class Simulation {
   CaseSpec spec_;
   Setup setup_;
   std::vector<Level<D>> levels_;
+  std::vector<std::vector<IdRange>> wall_ids_;  // per level, the ids of each wall block
   LevelCoupling<D> coupling_;
   double t_ = 0.0;
   double stop_time_ = 0.0;
