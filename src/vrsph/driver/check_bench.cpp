@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vrsph/driver/run.hpp"
+#include "vrsph/driver/setup_limits.hpp"
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/output/summary.hpp"
 #include "vrsph/sim/simulation.hpp"
@@ -13,12 +14,30 @@
 namespace vrsph {
 namespace {
 
+// The estimate made before filling (preflight), with the memory it is checked against.
+void print_estimate(const SetupEstimate& e, const SetupOrigin& origin) {
+  const auto mem = available_memory_bytes();
+  const double mib = 1024.0 * 1024.0;
+  fmt::print(
+      "  estimate before filling: about {:.0f} particles, {:.0f} MiB of memory ({}{})\n",
+      e.particles, e.bytes / mib,
+      mem ? fmt::format("{:.0f} MiB available", *mem / mib) : "memory available unknown",
+      origin.max_particles ? fmt::format(", --max-particles {:.0f}", *origin.max_particles) : "");
+  if (e.levels.size() < 2) return;
+  for (std::size_t k = 0; k < e.levels.size(); ++k) {
+    fmt::print("    level {} fills the case at dp = {:g} m: about {:.0f} fluid + {:.0f} wall\n", k,
+               e.levels[k].dp, e.levels[k].fluid, e.levels[k].wall);
+  }
+}
+
 template <int D>
-int check_impl(CaseSpec& spec) {
+int check_impl(CaseSpec& spec, const SetupOrigin& origin) {
+  const SetupEstimate estimate = preflight_case(spec, origin);
   Simulation<D> sim(spec);
   const auto& ps = sim.particles();
   const auto& grid = sim.grid();
   fmt::print("case {} ({}D) is valid\n", spec.name, D);
+  print_estimate(estimate, origin);
   fmt::print("  particles: {} fluid, {} wall ({} in all)\n", ps.count(Kind::fluid),
              ps.count(Kind::wall), ps.size());
   fmt::print("  dp = {:g} m, h = {:g} m ({:g} dp), particle mass = {:g} kg\n", spec.dp,
@@ -52,6 +71,7 @@ int check_impl(CaseSpec& spec) {
 template <int D>
 int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   spec.end_time = opt.sim_time;
+  preflight_case(spec, opt.origin);
   Simulation<D> sim(spec, opt.cells_per_support);
   const int threads = exec::thread_count();
   const auto t0 = std::chrono::steady_clock::now();
@@ -95,8 +115,8 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
 
 }  // namespace
 
-int check_case(CaseSpec spec) {
-  return spec.dimension == 2 ? check_impl<2>(spec) : check_impl<3>(spec);
+int check_case(CaseSpec spec, const SetupOrigin& origin) {
+  return spec.dimension == 2 ? check_impl<2>(spec, origin) : check_impl<3>(spec, origin);
 }
 
 int bench_case(CaseSpec spec, const BenchOptions& opt) {

@@ -10,6 +10,7 @@
 
 #include "vrsph/driver/run_checkpoint.hpp"
 #include "vrsph/driver/run_outputs.hpp"
+#include "vrsph/driver/setup_limits.hpp"
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/output/atomic_file.hpp"
 #include "vrsph/output/boxes_vtp.hpp"
@@ -164,6 +165,7 @@ int run_impl(CaseSpec& spec, const RunOptions& opt) {
 
 int run_case(CaseSpec spec, const RunOptions& opt) {
   if (opt.threads > 0) exec::set_thread_count(opt.threads);
+  preflight_case(spec, opt.origin);  // before the output folder and any particle
   if (!opt.resume) prepare_out_dir(opt.out_dir, opt.force);
   return spec.dimension == 2 ? run_impl<2>(spec, opt) : run_impl<3>(spec, opt);
 }
