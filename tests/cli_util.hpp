@@ -154,7 +154,9 @@ class TempDir {
   }
 
   // Runs `vrsph ARGS...` in this folder; stdout and stderr go to files here, then into the result.
-  CmdResult run(const std::vector<std::string>& args) {
+  // `shell` runs in the shell before it and `wrapper` wraps the command (see run_limited).
+  CmdResult run(const std::vector<std::string>& args, const std::string& shell = "",
+                const std::string& wrapper = "") {
     const int k = runs_++;
     const std::string stem = "cmd_" + std::to_string(k);
     const fs::path out_file = path_ / (stem + ".stdout");
@@ -170,7 +172,10 @@ class TempDir {
     full += sh_quote(path_.string());
     // Threads that wait sleep instead of spinning: the results are the same, and a 2-thread run
     // on a busy 2-core machine does not crawl.
-    full += " && OMP_WAIT_POLICY=passive ";
+    full += " && ";
+    full += shell;
+    full += "OMP_WAIT_POLICY=passive ";
+    full += wrapper;
     full += cmd;
     full += " >";
     full += sh_quote(out_file.string());
@@ -182,6 +187,12 @@ class TempDir {
     r.out = read_text(out_file);
     r.err = read_text(err_file);
     return r;
+  }
+
+  // run() with at most 4 GiB of address space and 120 s: a command that should refuse a case at
+  // once fails (std::bad_alloc, exit 3; or the timeout, exit 124) instead of filling the machine.
+  CmdResult run_limited(const std::vector<std::string>& args) {
+    return run(args, "ulimit -v 4194304 && ", "timeout 120 ");
   }
 
  private:

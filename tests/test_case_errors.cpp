@@ -56,11 +56,11 @@ TEST(CaseParser, ImpossibleValues) {
                   {"domain.max_lost_fraction", "[0, 1]"});
   expect_contains(error_of(m + "[[wall_block]]\nshape = \"tank\"\nmin = [0, 0]\nmax = [1, 1]\n"
                                "layers = 0\n"),
-                  {"wall_block.0.layers = 0", ">= 1"});
+                  {"wall_block.0.layers = 0", "must be in [1, 1000]"});
   expect_contains(error_of(m + "[[wall_block]]\nshape = \"box\"\nmin = [0, 1]\nmax = [1, 1]\n"),
                   {"wall_block.0.max = [1, 1]", "must be > min"});
   expect_contains(error_of(m + "[[refinement]]\nmin = [0, 0]\nmax = [1, 1]\ndp_ratio = 1\n"),
-                  {"refinement.0.dp_ratio = 1", ">= 2"});
+                  {"refinement.0.dp_ratio = 1", "must be in [2, 1000]"});
   expect_contains(error_of(m + "[[refinement]]\nmin = [0, 0]\nmax = [1, 1]\nbuffer_width = 0\n"),
                   {"refinement.0.buffer_width", "> 0"});
   expect_contains(error_of(m + "[numerics]\nvres_buffer_fill_min = 0.5\n"),

@@ -1,5 +1,6 @@
 // The `vrsph` command on bad input: exit status 1 and one line on stderr naming the key, the
-// value and the reason, for `check` and `run` alike.
+// value and the reason, for `check` and `run` alike (the set-up guards' cases are in
+// test_cli_setup_guards.cpp, run by the same test).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_bad_input.hpp"
 #include "cli_cases.hpp"
 #include "cli_util.hpp"
 
@@ -20,16 +22,6 @@ using namespace vrsph_cli_cases;
 
 // ---------------------------------------------------------------------------------------------
 // Bad input: exit status 1 and exactly one line on stderr naming the key, the value, the reason.
-
-struct BadInput {
-  std::string name;
-  std::string case_text;            // written to bad.toml; empty: no file written
-  std::string case_arg;             // the case path given on the command line (default bad.toml)
-  std::vector<std::string> args;    // extra arguments (--set ...)
-  std::vector<std::string> expect;  // substrings of the one stderr line
-};
-
-std::ostream& operator<<(std::ostream& os, const BadInput& b) { return os << b.name; }
 
 // Keys the format does not know, in a table, an inline table or as a whole table.
 void add_unknown_keys(std::vector<BadInput>& v) {
@@ -169,18 +161,6 @@ std::vector<BadInput> bad_inputs() {
   return v;
 }
 
-class CliBadInput : public ::testing::TestWithParam<BadInput> {};
-
-void expect_bad_input(const CmdResult& r, const BadInput& b) {
-  EXPECT_EQ(r.status, 1) << r;
-  const auto lines = r.err_lines();
-  ASSERT_EQ(lines.size(), 1u) << r;
-  EXPECT_EQ(r.err.back(), '\n') << r;
-  for (const std::string& s : b.expect) {
-    EXPECT_NE(lines[0].find(s), std::string::npos) << "stderr line lacks '" << s << "'\n" << r;
-  }
-}
-
 TEST_P(CliBadInput, CheckAndRunRefuseWithOneLine) {
   const BadInput& b = GetParam();
   TempDir dir;
@@ -189,11 +169,11 @@ TEST_P(CliBadInput, CheckAndRunRefuseWithOneLine) {
 
   std::vector<std::string> check{"check", case_arg};
   check.insert(check.end(), b.args.begin(), b.args.end());
-  expect_bad_input(dir.run(check), b);
+  expect_bad_input(dir.run_limited(check), b);
 
   std::vector<std::string> run{"run", case_arg, "--out", "out_run", "--quiet", "--threads", "1"};
   run.insert(run.end(), b.args.begin(), b.args.end());
-  expect_bad_input(dir.run(run), b);
+  expect_bad_input(dir.run_limited(run), b);
   EXPECT_FALSE(fs::exists(dir / "out_run")) << "bad input must not create the output folder";
   EXPECT_FALSE(fs::exists(dir / "out")) << "bad input must not create out/";
 }

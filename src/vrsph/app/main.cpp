@@ -56,7 +56,21 @@ struct CliArgs {
   int threads = 0, cells = 2, block = kDefaultCellsPerBlock, halt_after = -1;
   bool quiet = false, force = false;
   double bench_time = 0.05;
+  double max_particles = 0.0;  // 0: no limit
 };
+
+// --max-particles N: refuse a case whose set-up estimate exceeds N particles.
+void add_max_particles(CLI::App* cmd, CliArgs& a) {
+  cmd->add_option("--max-particles", a.max_particles,
+                  "refuse the case when the set-up would make more than N particles")
+      ->check(CLI::PositiveNumber);
+}
+
+SetupOrigin origin_of(const CliArgs& a, const std::string& source) {
+  SetupOrigin o{source, std::nullopt};
+  if (a.max_particles > 0.0) o.max_particles = a.max_particles;
+  return o;
+}
 
 CLI::App* add_run_command(CLI::App& app, CliArgs& a) {
   CLI::App* run = app.add_subcommand("run", "run a case (or resume a stopped run)");
@@ -75,6 +89,7 @@ CLI::App* add_run_command(CLI::App& app, CliArgs& a) {
   run->add_option("--halt-after-output", a.halt_after,
                   "testing aid: stop abruptly right after writing snapshot K (as a kill would)")
       ->group("");  // hidden from --help
+  add_max_particles(run, a);
   return run;
 }
 
@@ -83,6 +98,7 @@ CLI::App* add_check_command(CLI::App& app, CliArgs& a) {
       app.add_subcommand("check", "validate a case and report particle counts and dt");
   check->add_option("case", a.case_path, "case file (TOML)")->required();
   check->add_option("--set", a.sets, "override a case key: KEY=VALUE (repeatable)");
+  add_max_particles(check, a);
   return check;
 }
 
@@ -119,11 +135,13 @@ int run_command(const CliArgs& a) {
     check_resume_overrides(a.sets);
     ro.resume = true;
     ro.out_dir = a.resume_dir;
-    return run_case(load_case((std::filesystem::path(a.resume_dir) / "case.toml").string(), a.sets),
-                    ro);
+    const std::string path = (std::filesystem::path(a.resume_dir) / "case.toml").string();
+    ro.origin = origin_of(a, path);
+    return run_case(load_case(path, a.sets), ro);
   }
   if (a.case_path.empty()) throw CaseError("run: a case file (or --resume DIR) is required");
   CaseSpec spec = load_given_case(a.case_path, a.sets);
+  ro.origin = origin_of(a, a.case_path);
   ro.out_dir = a.out_dir.empty() ? std::filesystem::path("out") / spec.name
                                  : std::filesystem::path(a.out_dir);
   return run_case(std::move(spec), ro);
@@ -144,6 +162,7 @@ int bench_command(const CliArgs& a) {
   bo.threads = a.threads;
   bo.cells_per_support = a.cells;
   bo.cells_per_block = a.block;
+  bo.origin = origin_of(a, path);
   if (!a.json_out.empty()) bo.json_out = a.json_out;
   return bench_case(load_given_case(path, a.sets), bo);
 }
@@ -163,7 +182,9 @@ int dispatch(int argc, char** argv) {
     fmt::print(stderr, "vrsph: {}\n", e.what());
     return kExitBadInput;
   }
-  if (*check) return check_case(load_given_case(args.case_path, args.sets));
+  if (*check) {
+    return check_case(load_given_case(args.case_path, args.sets), origin_of(args, args.case_path));
+  }
   if (*bench) return bench_command(args);
   return run_command(args);
 }

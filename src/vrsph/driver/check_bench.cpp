@@ -9,12 +9,29 @@
 #include <string>
 
 #include "vrsph/driver/run.hpp"
+#include "vrsph/driver/setup_limits.hpp"
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/output/summary.hpp"
 #include "vrsph/sim/simulation.hpp"
 
 namespace vrsph {
 namespace {
+
+// The estimate made before filling (preflight), with the memory it is checked against.
+void print_estimate(const SetupEstimate& e, const SetupOrigin& origin) {
+  const auto mem = available_memory_bytes();
+  const double mib = 1024.0 * 1024.0;
+  fmt::print(
+      "  estimate before filling: about {:.0f} particles, {:.0f} MiB of memory ({}{})\n",
+      e.particles, e.bytes / mib,
+      mem ? fmt::format("{:.0f} MiB available", *mem / mib) : "memory available unknown",
+      origin.max_particles ? fmt::format(", --max-particles {:.0f}", *origin.max_particles) : "");
+  if (e.levels.size() < 2) return;
+  for (std::size_t k = 0; k < e.levels.size(); ++k) {
+    fmt::print("    level {} fills the case at dp = {:g} m: about {:.0f} fluid + {:.0f} wall\n", k,
+               e.levels[k].dp, e.levels[k].fluid, e.levels[k].wall);
+  }
+}
 
 // The particle counts: all levels together, then (with refinement) each level's fluid, buffer
 // and wall particles and mass points.
@@ -47,10 +64,12 @@ void print_particle_counts(const Simulation<D>& sim, const CaseSpec& spec) {
 }
 
 template <int D>
-int check_impl(CaseSpec& spec) {
+int check_impl(CaseSpec& spec, const SetupOrigin& origin) {
+  const SetupEstimate estimate = preflight_case(spec, origin);
   Simulation<D> sim(spec);
   const auto& grid = sim.grid();
   fmt::print("case {} ({}D) is valid\n", spec.name, D);
+  print_estimate(estimate, origin);
   print_particle_counts(sim, spec);
   fmt::print("  c0 = {:.6g} m/s (max_speed {:.6g} m/s), B = {:.6g} Pa\n", sim.setup().c0,
              sim.setup().max_speed, sim.params().eos.b);
@@ -79,6 +98,7 @@ std::uint64_t status_bytes(const std::string& field) {
 template <int D>
 int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   spec.end_time = opt.sim_time;
+  preflight_case(spec, opt.origin);
   const std::uint64_t rss_before = status_bytes("VmRSS");
   Simulation<D> sim(spec, opt.cells_per_support, opt.cells_per_block);
   const int threads = exec::thread_count();
@@ -133,8 +153,8 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
 
 }  // namespace
 
-int check_case(CaseSpec spec) {
-  return spec.dimension == 2 ? check_impl<2>(spec) : check_impl<3>(spec);
+int check_case(CaseSpec spec, const SetupOrigin& origin) {
+  return spec.dimension == 2 ? check_impl<2>(spec, origin) : check_impl<3>(spec, origin);
 }
 
 int bench_case(CaseSpec spec, const BenchOptions& opt) {

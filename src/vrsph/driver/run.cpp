@@ -11,6 +11,7 @@
 #include "vrsph/driver/run_checkpoint.hpp"
 #include "vrsph/driver/run_outputs.hpp"
 #include "vrsph/driver/run_report.hpp"
+#include "vrsph/driver/setup_limits.hpp"
 #include "vrsph/driver/stop_signals.hpp"
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/output/atomic_file.hpp"
@@ -256,6 +257,7 @@ void report_takeover(RunReport& report, const RunLock& lock, std::size_t temps,
 
 int run_case(CaseSpec spec, const RunOptions& opt) {
   if (opt.threads > 0) exec::set_thread_count(opt.threads);
+  preflight_case(spec, opt.origin);  // before the output folder and any particle
   if (!opt.resume) fs::create_directories(opt.out_dir);
   const RunLock lock(opt.out_dir, opt.resume ? "--resume" : "--out");
   if (!opt.resume) prepare_out_dir(opt.out_dir, opt.force);

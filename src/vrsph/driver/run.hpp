@@ -22,7 +22,15 @@ inline constexpr int kExitHalted = 9;  // --halt-after-output (tests only)
 // 143, as a shell reports a command killed by the signal.
 inline constexpr int kExitSignalBase = 128;
 
+// The set-up limits of a command: where the case came from (error messages name it) and the
+// user's --max-particles; the memory available is read from the machine (machine_limits).
+struct SetupOrigin {
+  std::string source;
+  std::optional<double> max_particles;
+};
+
 struct RunOptions {
+  SetupOrigin origin;
   std::filesystem::path out_dir;
   int threads = 0;  // 0: OpenMP default
   bool quiet = false;
@@ -38,10 +46,13 @@ struct RunOptions {
 // lock, a checkpoint that does not fit) is thrown.
 int run_case(CaseSpec spec, const RunOptions& opt);
 
-// Builds the particles and reports counts, h, c0, dt and the grid without running.
-int check_case(CaseSpec spec);
+// Estimates the case (particles, memory, first dt: sim/preflight.hpp) and refuses it when it
+// breaks a limit; then builds the particles and reports counts, h, c0, dt and the grid without
+// running.
+int check_case(CaseSpec spec, const SetupOrigin& origin);
 
 struct BenchOptions {
+  SetupOrigin origin;
   double sim_time = 0.05;
   int threads = 0;
   int cells_per_support = 2;

@@ -12,18 +12,29 @@ namespace vrsph {
 template <int D>
 CellGrid<D>::CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double support,
                       int cells_per_support)
-    : min_(domain_min), max_(domain_max), reach_(cells_per_support) {
+    : CellGrid(domain_min, domain_max, support, cells_per_support, domain_min) {}
+
+template <int D>
+CellGrid<D>::CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double support,
+                      int cells_per_support, const Vec<D>& origin)
+    : min_(domain_min), max_(domain_max), origin_(origin), reach_(cells_per_support) {
   cell_size_ = support / cells_per_support;
   inv_cell_ = 1.0 / cell_size_;
   ncell_total_ = 1;
   for (int k = 0; k < D; ++k) {
     const double extent = max_[k] - min_[k];
     if (!(extent > 0.0)) throw std::invalid_argument("cell grid: empty domain");
-    n_[k] = static_cast<std::int64_t>(std::ceil(extent * inv_cell_)) + 2 * reach_ + 1;
+    const double cells = std::ceil(extent * inv_cell_) + 2 * reach_ + 1;
+    if (!(cells <= static_cast<double>(kMaxDomainCells)))
+      throw std::invalid_argument(
+          "cell grid: domain too large for its cell size (over 2^40 cells)");
+    n_[k] = static_cast<std::int64_t>(cells);
     ncell_total_ *= n_[k];
   }
-  if (ncell_total_ > (std::int64_t{1} << 31)) {
-    throw std::invalid_argument("cell grid: domain too large for its cell size (over 2^31 cells)");
+  // The table is laid over the occupied cells only (fit_to), so the domain may hold many more;
+  // sim/preflight.cpp refuses a case beyond this bound before it is filled.
+  if (!(ncell_total_ <= kMaxDomainCells)) {
+    throw std::invalid_argument("cell grid: domain too large for its cell size (over 2^40 cells)");
   }
 }
 
@@ -50,7 +61,7 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
         const auto& x = ps.pos[i];
         if (!inside(x)) return;
         for (int k = 0; k < D; ++k) {
-          const auto c = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_);
+          const std::int64_t c = cell_coord(x, k);
           acc.lo[k] = std::min(acc.lo[k], c), acc.hi[k] = std::max(acc.hi[k], c);
         }
       });
@@ -79,7 +90,7 @@ template <int D>
 std::int64_t CellGrid<D>::cell_of(const Vec<D>& x) const {
   std::int64_t c = 0;
   for (int k = 0; k < D; ++k) {
-    const auto ck = static_cast<std::int64_t>((x[k] - min_[k]) * inv_cell_) - lo_[k];
+    const std::int64_t ck = cell_coord(x, k) - lo_[k];
     c += ck * stride_[k];
   }
   return c;
@@ -89,7 +100,7 @@ template <int D>
 bool CellGrid<D>::stencil_cell(const Vec<D>& x, std::int64_t& c) const {
   c = 0;
   for (int k = 0; k < D; ++k) {
-    const double a = std::floor((x[k] - min_[k]) * inv_cell_);
+    const double a = std::floor((x[k] - origin_[k]) * inv_cell_);
     if (!(a > -1e15 && a < 1e15)) return false;  // NaN or absurdly far
     const std::int64_t t = static_cast<std::int64_t>(a) - lo_[k];
     if (t < 0 || t >= n_[k]) return false;  // more than `reach` cells from every particle

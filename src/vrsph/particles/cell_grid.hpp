@@ -9,6 +9,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -23,15 +24,21 @@ inline constexpr int kDefaultCellsPerBlock = 2;
 
 enum class Group : int { fluid = 0, wall = 1 };  // fluid group includes buffer particles
 
+// The most cells a grid's domain may span (the cell table itself covers the occupied cells).
+inline constexpr std::int64_t kMaxDomainCells = std::int64_t{1} << 40;
+
 inline Group group_of(Kind k) { return k == Kind::wall ? Group::wall : Group::fluid; }
 
 template <int D>
 class CellGrid {
  public:
   CellGrid() = default;
-  // domain_min/max bound the region particles may occupy; support = 2h.
+  // domain_min/max bound the region particles may occupy; support = 2h. Cells are laid from
+  // `origin` (default: domain_min), which may lie inside the domain: cells then extend below it.
   CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double support,
            int cells_per_support);
+  CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double support,
+           int cells_per_support, const Vec<D>& origin);
 
   bool inside(const Vec<D>& x) const;
   // For a query point anywhere (also beyond the particle cloud or the domain): the cell c whose
@@ -109,9 +116,15 @@ class CellGrid {
 
  private:
   std::size_t key(std::int64_t cell, Kind k) const;
+  // Absolute cell coordinate of x along axis k (floor: also below the origin).
+  std::int64_t cell_coord(const Vec<D>& x, int k) const {
+    const double a = (x[k] - origin_[k]) * inv_cell_;
+    return static_cast<std::int64_t>(a >= 0.0 ? a : std::floor(a));
+  }
   void fit_to(const ParticleSet<D>& ps);
 
   Vec<D> min_{}, max_{};
+  Vec<D> origin_{};  // where cell 0 starts
   double cell_size_ = 0.0;
   double inv_cell_ = 0.0;
   int reach_ = 1;

@@ -106,6 +106,12 @@ std::string toml_quote(std::string_view text) {
   return out + "\"";
 }
 
+std::string vec_text(const Vec3d& v, int dim) {
+  std::string out = "[";
+  for (int k = 0; k < dim; ++k) out += fmt::format("{}{}", k ? ", " : "", v[k]);
+  return out + "]";
+}
+
 TableReader::TableReader(const toml::table* tbl, std::string path, std::string source, Keys keys)
     : tbl_(tbl), path_(std::move(path)), source_(std::move(source)) {
   check_keys(keys);

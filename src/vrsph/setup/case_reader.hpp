@@ -30,6 +30,9 @@ std::string render_full(const toml::node& node);
 // A TOML basic string literal with quotes and escapes.
 std::string toml_quote(std::string_view text);
 
+// "[a, b]" or "[a, b, c]": the first dim components, for messages.
+std::string vec_text(const Vec3d& v, int dim);
+
 // A value check for numbers: predicate plus the reason shown when it fails.
 struct Check {
   bool (*ok)(double);

@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
+#include "vrsph/setup/case_checks.hpp"
 #include "vrsph/setup/case_parser.hpp"
 #include "vrsph/setup/case_reader.hpp"
 #include "vrsph/setup/case_schema.hpp"
@@ -30,20 +32,39 @@ bool all_less(const Vec3d& a, const Vec3d& b, int dim) {
   return true;
 }
 
-// A case name usable as a folder name: non-empty, no path separators or control characters.
+// The longest file or folder name most file systems take (ext4, XFS, APFS, NTFS: 255 bytes).
+constexpr std::size_t kMaxFileName = 255;
+// Integer keys beyond these make no sense and would only overflow counts further on.
+constexpr int kMaxLayers = 1000;   // a wall needs 2h / dp = 2 h_over_dp layers
+constexpr int kMaxDpRatio = 1000;  // dp_ratio 2 (3, 4) is the usual refinement
+
+bool portable_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-';
+}
+
+// A case name usable as a folder name on any system: the POSIX portable file-name characters
+// [A-Za-z0-9._-], not starting with '.' (hidden, '.', '..') or '-' (read as an option).
 bool valid_case_name(const std::string& name) {
-  if (name.empty() || name == "." || name == "..") return false;
-  return std::none_of(name.begin(), name.end(), [](char c) {
-    return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20;
-  });
+  if (name.empty() || name.front() == '.' || name.front() == '-') return false;
+  return std::all_of(name.begin(), name.end(), [](char c) { return portable_char(c) || c == '.'; });
 }
 
 // A safe file-name fragment: [A-Za-z0-9_-]+.
 bool valid_file_fragment(const std::string& name) {
-  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-           c == '-';
-  });
+  return !name.empty() && std::all_of(name.begin(), name.end(), portable_char);
+}
+
+// The longest line name whose files fit kMaxFileName: the atomic writer's temporary
+// ".line_<name>_<index>.csv.tmpXXXXXX" (output/atomic_file.cpp), with the index of the last
+// snapshot (4 digits, more when the case writes more snapshots).
+std::size_t max_line_name(const CaseSpec& spec) {
+  const double snapshots = spec.output_interval > 0.0 ? spec.end_time / spec.output_interval : 1.0;
+  const std::size_t digits =
+      std::max<std::size_t>(4, fmt::format("{:.0f}", std::ceil(snapshots) + 1.0).size());
+  const std::size_t fixed = std::string_view(".line_").size() + 1 + digits +
+                            std::string_view(".csv").size() + std::string_view(".tmpXXXXXX").size();
+  return kMaxFileName - fixed;
 }
 
 // Required min and max vectors with min < max in every component.
@@ -58,7 +79,11 @@ void read_box(const TableReader& r, int dim, Vec3d& min, Vec3d& max) {
 void parse_case_table(const TableReader& r, CaseSpec& spec) {
   spec.name = r.req("name", r.opt_string("name"));
   r.require("name", valid_case_name(spec.name),
-            "must be a non-empty folder name (no '/', '\\', control characters, '.' or '..')");
+            "must be a folder name of the characters A-Z a-z 0-9 . _ - (not starting with '.' or "
+            "'-'): it names the output folder");
+  r.require("name", spec.name.size() <= kMaxFileName,
+            fmt::format("is {} bytes long: the output folder's name can have at most {}",
+                        spec.name.size(), kMaxFileName));
   spec.dimension = r.req("dimension", r.opt_integer("dimension"));
   r.require("dimension", spec.dimension == 2 || spec.dimension == 3, "must be 2 or 3");
   spec.end_time = r.req("end_time", r.opt_number("end_time", kPositive));
@@ -176,7 +201,9 @@ WallBlock parse_wall_block(const TableReader& r, const CaseSpec& spec) {
   w.shape = r.req("shape", r.opt_enum("shape", kWallShapeNames));
   read_box(r, spec.dimension, w.min, w.max);
   w.layers = r.opt_integer("layers").value_or(w.layers);
-  r.require("layers", w.layers >= 1, "must be >= 1");
+  r.require(
+      "layers", w.layers >= 1 && w.layers <= kMaxLayers,
+      fmt::format("must be in [1, {}] (a wall needs 2h / dp = 2 x h_over_dp layers)", kMaxLayers));
   return w;
 }
 
@@ -209,7 +236,8 @@ RefinementBox parse_refinement(const TableReader& r, const CaseSpec& spec) {
     }
   }
   b.dp_ratio = r.opt_integer("dp_ratio").value_or(b.dp_ratio);
-  r.require("dp_ratio", b.dp_ratio >= 2, "must be >= 2");
+  r.require("dp_ratio", b.dp_ratio >= 2 && b.dp_ratio <= kMaxDpRatio,
+            fmt::format("must be in [2, {}]", kMaxDpRatio));
   b.buffer_width = r.opt_number("buffer_width", kPositive).value_or(b.buffer_width);
   return b;
 }
@@ -224,6 +252,11 @@ void parse_lines(const TableReader& r, CaseSpec& spec) {
     lr.require("name", valid_file_fragment(line.name), "must match [A-Za-z0-9_-]+");
     lr.require("name", !line.name.ends_with("_interp"),
                "must not end in \"_interp\" (reserved for the interpolated line files)");
+    const std::size_t longest = max_line_name(spec) - std::string_view("_interp").size();
+    lr.require("name", line.name.size() <= longest,
+               fmt::format("is {} bytes long: at most {} fit the {}-byte file names "
+                           "line_<name>_interp_NNNN.csv (and their temporary names)",
+                           line.name.size(), longest, kMaxFileName));
     lr.require("name", names.insert(line.name).second, "duplicate line name");
     line.from = lr.req("from", lr.opt_vector("from", spec.dimension));
     line.to = lr.req("to", lr.opt_vector("to", spec.dimension));
@@ -274,14 +307,12 @@ CaseSpec parse_case(const toml::table& tbl, const std::string& source_name) {
                              root.sub_table("fluid", kFluidKeys), spec);
   parse_eos(root.sub_table("eos", kEosKeys), spec.eos);
   parse_numerics(root.sub_table("numerics", kNumericsKeys), spec);
-  for (const auto& r : root.table_array("fluid_block", kFluidBlockKeys)) {
-    spec.fluid_blocks.push_back(parse_fluid_block(r, spec));
-  }
+  const auto fluid_readers = root.table_array("fluid_block", kFluidBlockKeys);
+  for (const auto& r : fluid_readers) spec.fluid_blocks.push_back(parse_fluid_block(r, spec));
   root.require("fluid_block", !spec.fluid_blocks.empty(),
                "at least one [[fluid_block]] is required");
-  for (const auto& r : root.table_array("wall_block", kWallBlockKeys)) {
-    spec.wall_blocks.push_back(parse_wall_block(r, spec));
-  }
+  const auto wall_readers = root.table_array("wall_block", kWallBlockKeys);
+  for (const auto& r : wall_readers) spec.wall_blocks.push_back(parse_wall_block(r, spec));
   root.sub_table("numerics", kNumericsKeys)
       .sub_table("surface_tension", kSurfaceTensionKeys)
       .require("zero_net_force",
@@ -289,12 +320,12 @@ CaseSpec parse_case(const toml::table& tbl, const std::string& source_name) {
                "true with walls: the net capillary force is zero only on a closed free surface "
                "(drops); with walls it is real");
   parse_domain(root.sub_table("domain", kDomainKeys), spec);
-  for (const auto& r : root.table_array("refinement", kRefinementKeys)) {
-    spec.refinements.push_back(parse_refinement(r, spec));
-  }
+  const auto refinement_readers = root.table_array("refinement", kRefinementKeys);
+  for (const auto& r : refinement_readers) spec.refinements.push_back(parse_refinement(r, spec));
   parse_output(root.sub_table("output", kOutputKeys), spec);
   spec.laplace_pressure =
       root.sub_table("analysis", kAnalysisKeys).opt_number("laplace_pressure", kPositive);
+  check_geometry({fluid_readers, wall_readers, refinement_readers}, spec);
   return spec;
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "vrsph/core/to_vec.hpp"
+#include "vrsph/setup/tank.hpp"
 
 namespace vrsph {
 namespace {
@@ -87,45 +88,12 @@ void fill_circle_rings(const Vec<2>& c, double radius, double dp, Fn&& fn) {
   }
 }
 
-// Tank: `layers` rows of nodes below the min face of the vertical axis and outside the faces
-// of the other axes; the top stays open. Corner columns belong to the first axis' side walls.
+// Tank: the nodes of every plate of setup/tank.hpp.
 template <int D, class Fn>
 void fill_tank(const Vec<D>& min, const Vec<D>& max, int layers, double dp, Fn&& fn) {
-  const int vert = vertical_axis<D>();
-  const double grow = (layers - 1) * dp;
-  for (int l = 0; l < layers; ++l) {
-    Vec<D> lo = min, hi = max;  // bottom plate, grown sideways to cover the side walls
-    for (int k = 0; k < D; ++k) {
-      if (k == vert) continue;
-      lo[k] -= grow;
-      hi[k] += grow;
-    }
-    lo[vert] = hi[vert] = min[vert] - l * dp;
+  for_each_tank_plate<D>(min, max, layers, dp, [&](const Vec<D>& lo, const Vec<D>& hi) {
     for_each_node<D>(lo, hi, dp, fn);
-  }
-  for (int axis = 0; axis < D; ++axis) {
-    if (axis == vert) continue;
-    for (int side = 0; side < 2; ++side) {
-      for (int l = 0; l < layers; ++l) {
-        Vec<D> lo = min, hi = max;
-        lo[vert] = min[vert] + dp;
-        for (int k = 0; k < D; ++k) {
-          if (k == vert || k == axis) continue;
-          // walls of the first horizontal axis span the grown extent; later ones fit inside
-          if (k > axis) {
-            lo[k] -= grow;
-            hi[k] += grow;
-          } else {
-            lo[k] += dp;
-            hi[k] -= dp;
-          }
-        }
-        const double face = side == 0 ? min[axis] - l * dp : max[axis] + l * dp;
-        lo[axis] = hi[axis] = face;
-        for_each_node<D>(lo, hi, dp, fn);
-      }
-    }
-  }
+  });
 }
 
 }  // namespace

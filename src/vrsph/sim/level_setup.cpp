@@ -7,30 +7,32 @@
 
 #include "vrsph/core/to_vec.hpp"
 #include "vrsph/physics/density_diffusion.hpp"
+#include "vrsph/setup/block_extent.hpp"
 #include "vrsph/setup/geometry.hpp"
 
 namespace vrsph {
 
-// Default domain: bounding box of all particles grown by 10% of its size on each side (at least
-// 4h) and by a further 50% upwards against gravity, where splashes go.
+// Default domain: the particles' bounding box grown by the margin of grow_default_domain
+// (setup/block_extent.hpp).
 template <int D>
-void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>& lo, Vec<D>& hi) {
+void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, double fluid_extent,
+                    Vec<D>& lo, Vec<D>& hi, Vec<D>& cell_origin) {
+  Vec3d a{}, b{}, u{}, o{};
   for (int k = 0; k < D; ++k) {
-    lo[k] = 1e300;
-    hi[k] = -1e300;
+    a[k] = 1e300;
+    b[k] = -1e300;
+    u[k] = up[k];
   }
   for (const auto& x : ps.pos) {
     for (int k = 0; k < D; ++k) {
-      lo[k] = std::min(lo[k], x[k]);
-      hi[k] = std::max(hi[k], x[k]);
+      a[k] = std::min(a[k], x[k]);
+      b[k] = std::max(b[k], x[k]);
     }
   }
-  for (int k = 0; k < D; ++k) {
-    const double ext = hi[k] - lo[k];
-    const double m = std::max(0.1 * ext, 4.0 * h);
-    lo[k] -= m + (up[k] < -0.5 ? 0.5 * ext : 0.0);
-    hi[k] += m + (up[k] > 0.5 ? 0.5 * ext : 0.0);
-  }
+  grow_default_domain(a, b, D, fluid_extent, u, h, o);
+  lo = to_vec<D>(a);
+  hi = to_vec<D>(b);
+  cell_origin = to_vec<D>(o);
 }
 
 // Parameters of one level: everything that depends on its dp; c0 is common to all levels.
@@ -119,8 +121,10 @@ ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
   return ps;
 }
 
-template void default_domain<2>(const ParticleSet<2>&, const Vec<2>&, double, Vec<2>&, Vec<2>&);
-template void default_domain<3>(const ParticleSet<3>&, const Vec<3>&, double, Vec<3>&, Vec<3>&);
+template void default_domain<2>(const ParticleSet<2>&, const Vec<2>&, double, double, Vec<2>&,
+                                Vec<2>&, Vec<2>&);
+template void default_domain<3>(const ParticleSet<3>&, const Vec<3>&, double, double, Vec<3>&,
+                                Vec<3>&, Vec<3>&);
 template SolverParams<2> level_params<2>(const CaseSpec&, double, double);
 template SolverParams<3> level_params<3>(const CaseSpec&, double, double);
 template InitialSet<2> level_fill<2>(const CaseSpec&, double);

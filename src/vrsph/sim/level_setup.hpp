@@ -14,10 +14,13 @@
 
 namespace vrsph {
 
-// Default domain: bounding box of all particles grown by 10% of its size on each side (at least
-// 4h) and by a further 50% upwards against gravity, where splashes go.
+// Default domain: bounding box of all particles grown by the margin of grow_default_domain
+// (setup/block_extent.hpp): at least the fluid's largest extent (fluid_extent) on each side, so
+// a free body can deform, plus room for splashes against gravity. cell_origin: where the cell
+// grid is laid from (the domain's min under the earlier, smaller margin).
 template <int D>
-void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, Vec<D>& lo, Vec<D>& hi);
+void default_domain(const ParticleSet<D>& ps, const Vec<D>& up, double h, double fluid_extent,
+                    Vec<D>& lo, Vec<D>& hi, Vec<D>& cell_origin);
 
 // Parameters of one level: everything that depends on its dp; c0 is common to all levels.
 template <int D>

@@ -7,8 +7,10 @@
 #include <type_traits>
 
 #include "vrsph/core/to_vec.hpp"
+#include "vrsph/setup/block_extent.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/sim/level_setup.hpp"
+#include "vrsph/sim/preflight.hpp"
 #include "vrsph/solver/stepper.hpp"
 #include "vrsph/vres/levels.hpp"
 #include "vrsph/vres/momentum.hpp"
@@ -29,32 +31,17 @@ double now_seconds() {
   return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
 }
 
-// Speed of sound (common to all levels): given, or sound_speed_factor x max_speed, with
-// max_speed = sqrt(g H) for gravity cases when not given (docs/physics.md
-// section 2). H and initial velocities come from the level-0 fill. Fills spec.eos.max_speed when
-// it was derived, so that the resolved case records it.
+// Speed of sound (common to all levels), resolve_sound_speed (sim/preflight.hpp) with H and
+// the initial velocities from the level-0 fill. Fills spec.eos.max_speed when it was derived, so
+// that the resolved case records it.
 template <int D>
 Setup resolve_setup(CaseSpec& spec, const InitialSet<D>& init0) {
   Setup setup;
   setup.fluid_height = init0.fluid_height;
-  const double g = norm(to_vec<D>(spec.fluid.gravity));
-  if (!spec.eos.max_speed) {
-    if (g > 0.0 && setup.fluid_height > 0.0) {
-      spec.eos.max_speed = std::sqrt(g * setup.fluid_height);
-    } else {
-      double vmax = 0.0;
-      for (const auto& v : init0.particles.vel) vmax = std::max(vmax, norm(v));
-      if (vmax > 0.0) spec.eos.max_speed = vmax;
-    }
-  }
-  if (!spec.eos.sound_speed && !spec.eos.max_speed) {
-    throw std::invalid_argument(
-        "eos.max_speed: missing: needed to set the speed of sound when there is no gravity and no "
-        "initial velocity (give eos.max_speed or eos.sound_speed)");
-  }
+  double vmax = 0.0;
+  for (const auto& v : init0.particles.vel) vmax = std::max(vmax, norm(v));
+  setup.c0 = resolve_sound_speed(spec, setup.fluid_height, vmax);
   setup.max_speed = spec.eos.max_speed.value_or(0.0);
-  setup.c0 = spec.eos.sound_speed ? *spec.eos.sound_speed
-                                  : spec.eos.sound_speed_factor * *spec.eos.max_speed;
   return setup;
 }
 
@@ -89,12 +76,14 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
   coupling_ = LevelCoupling<D>(std::move(links), opt);
 
   // One domain for all levels, from the level-0 particles.
-  Vec<D> lo, hi;
-  default_domain<D>(levels_[0].ps, levels_[0].prm.up, levels_[0].prm.h, lo, hi);
-  if (spec.domain_min) lo = to_vec<D>(*spec.domain_min);
+  Vec<D> lo, hi, origin;
+  const double fluid_extent = largest_extent(case_extent(spec, spec.dp, false), D);
+  default_domain<D>(levels_[0].ps, levels_[0].prm.up, levels_[0].prm.h, fluid_extent, lo, hi,
+                    origin);
+  if (spec.domain_min) lo = origin = to_vec<D>(*spec.domain_min);
   if (spec.domain_max) hi = to_vec<D>(*spec.domain_max);
   for (Level<D>& L : levels_) {
-    L.grid = CellGrid<D>(lo, hi, L.prm.kernel.support(), cells_per_support);
+    L.grid = CellGrid<D>(lo, hi, L.prm.kernel.support(), cells_per_support, origin);
     L.grid.set_block_width(cells_per_block);
     L.ps.resize(L.ps.size());
     sort_particles(L);
@@ -139,11 +128,15 @@ void Simulation<D>::sort_particles(Level<D>& L) {
   const double frac = static_cast<double>(counters_.lost_fluid) /
                       static_cast<double>(std::max<std::size_t>(initial_fluid_, 1));
   if (initial_fluid_ > 0 && frac > spec_.max_lost_fraction) {
+    const std::string hint =
+        spec_.domain_min ? ""
+                         : "; this is the default domain, the particles' bounding box plus a "
+                           "margin: [domain] min and max set it";
     throw InstabilityError(fmt::format(
         "unstable at t = {:.6g} s, step {}: {} fluid particles ({:.3g}% of {}) have left the "
-        "domain (last: id {}) (check: domain, limit domain.max_lost_fraction = {})",
+        "domain (last: id {}) (check: domain, limit domain.max_lost_fraction = {}{})",
         t_, step_, counters_.lost_fluid, 100.0 * frac, initial_fluid_, lost.back(),
-        spec_.max_lost_fraction));
+        spec_.max_lost_fraction, hint));
   }
 }
 
