@@ -146,7 +146,7 @@ std::vector<BadInput> size_guards() {
   return v;
 }
 
-std::vector<BadInput> time_and_name_guards() {
+std::vector<BadInput> time_guards() {
   std::vector<BadInput> v;
   v.push_back({"denormal_dp",
                kTiny,
@@ -178,6 +178,11 @@ std::vector<BadInput> time_and_name_guards() {
                "",
                {"--set", "fluid_block.0.pressure=1e12"},
                {"fluid_block.0.pressure", "initial density", "first step"}});
+  return v;
+}
+
+std::vector<BadInput> name_guards() {
+  std::vector<BadInput> v;
   v.push_back({"case_name_too_long",
                kTiny,
                "",
@@ -210,7 +215,7 @@ std::vector<BadInput> time_and_name_guards() {
 
 std::vector<BadInput> guard_inputs() {
   std::vector<BadInput> v = geometry_guards();
-  for (auto* list : {size_guards, time_and_name_guards}) {
+  for (auto* list : {size_guards, time_guards, name_guards}) {
     for (auto& b : list()) v.push_back(std::move(b));
   }
   return v;
