@@ -55,20 +55,7 @@ class CellGrid {
   // cell c (c from particle_cells(), i.e. without the group offset).
   template <class Fn>
   void for_each_run(std::int64_t c, Group g, Fn&& fn) const {
-    c += static_cast<std::int64_t>(g) * ncell_total_;
-    if constexpr (D == 2) {
-      for (int dy = -reach_; dy <= reach_; ++dy) {
-        const std::int64_t row = c + dy * stride_[1];
-        fn(begin_[row - reach_], begin_[row + reach_ + 1]);
-      }
-    } else {
-      for (int dz = -reach_; dz <= reach_; ++dz) {
-        for (int dy = -reach_; dy <= reach_; ++dy) {
-          const std::int64_t row = c + dy * stride_[1] + dz * stride_[2];
-          fn(begin_[row - reach_], begin_[row + reach_ + 1]);
-        }
-      }
-    }
+    for_each_row(c, g, -reach_, reach_, fn);
   }
 
   // Candidate blocks (particles/candidate_block.hpp) serve `block_width` neighbouring cells of
@@ -83,20 +70,7 @@ class CellGrid {
     const std::int64_t x0 = c0 % n_[0];
     const std::int64_t lo = std::max<std::int64_t>(x0 - reach_, 0) - x0;
     const std::int64_t hi = std::min<std::int64_t>(x0 + block_width_ - 1 + reach_, n_[0] - 1) - x0;
-    const std::int64_t c = c0 + static_cast<std::int64_t>(g) * ncell_total_;
-    if constexpr (D == 2) {
-      for (int dy = -reach_; dy <= reach_; ++dy) {
-        const std::int64_t row = c + dy * stride_[1];
-        fn(begin_[row + lo], begin_[row + hi + 1]);
-      }
-    } else {
-      for (int dz = -reach_; dz <= reach_; ++dz) {
-        for (int dy = -reach_; dy <= reach_; ++dy) {
-          const std::int64_t row = c + dy * stride_[1] + dz * stride_[2];
-          fn(begin_[row + lo], begin_[row + hi + 1]);
-        }
-      }
-    }
+    for_each_row(c0, g, lo, hi, fn);
   }
 
   // Cell of each particle after the last sort (same order as the particle arrays).
@@ -115,6 +89,25 @@ class CellGrid {
   const Vec<D>& domain_max() const { return max_; }
 
  private:
+  // fn(begin, end) for the cells c + lo .. c + hi of every row of the stencil around cell c.
+  template <class Fn>
+  void for_each_row(std::int64_t c, Group g, std::int64_t lo, std::int64_t hi, Fn& fn) const {
+    c += static_cast<std::int64_t>(g) * ncell_total_;
+    if constexpr (D == 2) {
+      for (int dy = -reach_; dy <= reach_; ++dy) {
+        const std::int64_t row = c + dy * stride_[1];
+        fn(begin_[row + lo], begin_[row + hi + 1]);
+      }
+    } else {
+      for (int dz = -reach_; dz <= reach_; ++dz) {
+        for (int dy = -reach_; dy <= reach_; ++dy) {
+          const std::int64_t row = c + dy * stride_[1] + dz * stride_[2];
+          fn(begin_[row + lo], begin_[row + hi + 1]);
+        }
+      }
+    }
+  }
+
   std::size_t key(std::int64_t cell, Kind k) const;
   // Absolute cell coordinate of x along axis k (floor: also below the origin).
   std::int64_t cell_coord(const Vec<D>& x, int k) const {
