@@ -242,6 +242,12 @@ TEST(CliSetupGuards, CasesJustInsideTheGuardsAreValid) {
   // Two drops side by side (droplet_coalescence_2d) touch but do not overlap.
   const CmdResult d = dir.run({"check", (kCases / "droplet_coalescence_2d.toml").string()});
   EXPECT_EQ(d.status, 0) << d;
+  // A thin tank is accepted when the block asks for it (the DualSPHysics replica in 3D).
+  dir.write("thin.toml", replace_once(kTiny, "layers = 3", "layers = 2\nthin = true"));
+  const CmdResult e = dir.run({"check", "thin.toml"});
+  EXPECT_EQ(e.status, 0) << e;
+  const CmdResult f = dir.run({"check", (kCases / "bench_dam_break_3d.toml").string()});
+  EXPECT_EQ(f.status, 0) << f;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -75,7 +75,7 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
     ncell_total_ *= n_[k];
   }
   stride_ = {1, n_[0], n_[0] * n_[1]};
-  begin_.assign(2 * static_cast<std::size_t>(ncell_total_) + 1, 0);
+  begin_.resize(2 * static_cast<std::size_t>(ncell_total_) + 1);  // filled by the sort
 }
 
 template <int D>
@@ -136,48 +136,28 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
     pcell_[i] =
         inside(ps.pos[i]) ? static_cast<std::int64_t>(key(cell_of(ps.pos[i]), ps.kind[i])) : -1;
   });
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < n; ++i) {  // histogram (serial: cheap, and no atomics)
-    if (pcell_[i] < 0) {
-      lost.push_back(ps.id[i]);
-      continue;
-    }
-    ++begin_[static_cast<std::size_t>(pcell_[i])];
-    ++kept;
-  }
-  // Inclusive prefix sum: begin_[k] = end of key k; the reverse scatter below walks it back to
-  // the start of key k, keeping particles of a cell in their previous relative order (stable).
-  for (std::size_t k = 1; k < begin_.size(); ++k) begin_[k] += begin_[k - 1];
-  perm_.resize(kept);
-  for (std::size_t i = n; i-- > 0;) {
-    if (pcell_[i] < 0) continue;
-    perm_[--begin_[static_cast<std::size_t>(pcell_[i])]] = static_cast<std::uint32_t>(i);
-  }
-  // Every carried array of the field list is gathered through the permutation into its twin in
-  // scratch_; after the swap scratch_ holds the previous storage, so nothing is allocated once
-  // the sizes have settled.
+  keysort_.sort(pcell_, begin_.size() - 1, begin_, perm_, dropped_);
+  for (std::uint32_t i : dropped_) lost.push_back(ps.id[i]);
+  const std::size_t kept = perm_.size();
+  // Every carried array of the field list is gathered through the permutation into the spare
+  // array of its element type, and the two swap: the spare then holds the array's previous
+  // storage, ready for the next array of that type. One spare per type (not a twin of every
+  // array) keeps the sort's memory to a few bytes per particle.
   using PS = ParticleSet<D>;
-  PS::zip_fields(
-      [kept](std::string_view, FieldRole role, auto&, auto& s) {
-        if (carried(role)) s.resize(kept);
-      },
-      ps, scratch_);
   cell_scratch_.resize(kept);
   PS::zip_fields(
-      [this](std::string_view, FieldRole role, const auto& a, auto& s) {
-        if (carried(role)) permute_into(a, perm_, s);
+      [this, kept](std::string_view, FieldRole role, auto& a) {
+        if (!carried(role)) {
+          a.resize(kept);  // derived fields (p, acc, drho) are recomputed after every sort
+          return;
+        }
+        auto& spare = spare_for(a);
+        spare.resize(kept);
+        permute_into(a, perm_, spare);
+        a.swap(spare);
       },
-      ps, scratch_);
+      ps);
   permute_into(pcell_, perm_, cell_scratch_);
-  // Derived fields (p, acc, drho) are recomputed after every sort: only resized.
-  PS::zip_fields(
-      [kept](std::string_view, FieldRole role, auto& a, auto& s) {
-        if (carried(role))
-          a.swap(s);
-        else
-          a.resize(kept);
-      },
-      ps, scratch_);
   pcell_.swap(cell_scratch_);
   // pcell_ held sort keys; particle_cells() gives cells, without the wall group's offset.
   const auto wall_begin = static_cast<std::int64_t>(group_begin(Group::wall));

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "vrsph/core/vec.hpp"
+#include "vrsph/particles/key_sort.hpp"
 #include "vrsph/particles/particles.hpp"
 
 namespace vrsph {
@@ -129,8 +130,18 @@ class CellGrid {
   std::vector<std::uint32_t> begin_;  // begin_[k]..begin_[k+1]: particles of key k = c + g*ncells
   std::vector<std::int64_t> pcell_;
   std::vector<std::uint32_t> perm_;
-  ParticleSet<D> scratch_;  // gather targets of the sort (carried arrays only), swapped in
+  std::vector<std::uint32_t> dropped_;
+  KeySort keysort_;
   std::vector<std::int64_t> cell_scratch_;
+  // Gather targets of the sort, one per element type of the particle arrays (spare_for).
+  std::vector<std::uint64_t> spare_u64_;
+  std::vector<Kind> spare_kind_;
+  std::vector<Vec<D>> spare_vec_;
+  std::vector<double> spare_f64_;
+  std::vector<std::uint64_t>& spare_for(const std::vector<std::uint64_t>&) { return spare_u64_; }
+  std::vector<Kind>& spare_for(const std::vector<Kind>&) { return spare_kind_; }
+  std::vector<Vec<D>>& spare_for(const std::vector<Vec<D>>&) { return spare_vec_; }
+  std::vector<double>& spare_for(const std::vector<double>&) { return spare_f64_; }
 };
 
 }  // namespace vrsph

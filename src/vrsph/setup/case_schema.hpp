@@ -38,7 +38,7 @@ inline constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "
                                                            "zero_net_force"};
 inline constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",   "min",
                                                        "max",   "fill",   "velocity", "pressure"};
-inline constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers"};
+inline constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers", "thin"};
 inline constexpr std::string_view kDomainKeys[] = {"min", "max", "max_lost_fraction"};
 inline constexpr std::string_view kRefinementKeys[] = {"min", "max", "dp_ratio", "buffer_width"};
 inline constexpr std::string_view kOutputKeys[] = {"interval",    "formats", "precision",

@@ -195,7 +195,7 @@ FluidBlock parse_fluid_block(const TableReader& r, const CaseSpec& spec) {
   return b;
 }
 
-// One [[wall_block]]: shape (tank | box), min, max, layers >= 1.
+// One [[wall_block]]: shape (tank | box), min, max, layers >= 1, thin.
 WallBlock parse_wall_block(const TableReader& r, const CaseSpec& spec) {
   WallBlock w;
   w.shape = r.req("shape", r.opt_enum("shape", kWallShapeNames));
@@ -204,6 +204,7 @@ WallBlock parse_wall_block(const TableReader& r, const CaseSpec& spec) {
   r.require(
       "layers", w.layers >= 1 && w.layers <= kMaxLayers,
       fmt::format("must be in [1, {}] (a wall needs 2h / dp = 2 x h_over_dp layers)", kMaxLayers));
+  w.thin = r.opt_bool("thin").value_or(false);
   return w;
 }
 

@@ -48,6 +48,7 @@ struct WallBlock {
   Vec3d min{};
   Vec3d max{};
   int layers = 3;
+  bool thin = false;  // accept a wall thinner than the kernel support (as DualSPHysics cases)
 
   bool operator==(const WallBlock&) const = default;
 };

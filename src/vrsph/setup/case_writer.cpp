@@ -140,6 +140,7 @@ void write_blocks(Writer& w, const CaseSpec& s) {
     w.kv("min", vec(b.min, dim), "m");
     w.kv("max", vec(b.max, dim), "m");
     w.kv("layers", fmt::format("{}", b.layers));
+    if (b.thin) w.kv("thin", "true", "thinner than the support, accepted");
   }
 }
 

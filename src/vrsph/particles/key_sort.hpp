@@ -1,0 +1,43 @@
+// Stable counting sort of particle indices by an integer key, in parallel with no serial phase
+// over the particles or the keys, and the same permutation for any thread count.
+//
+// The particles are split into P consecutive parts (one per thread). Each part counts its keys
+// over the key window it actually holds: particles are sorted by cell already from the previous
+// step, so a part's window is a narrow slice of the key range and the counters of all parts
+// together take about one entry per key, not P. Then, key by key (in parallel over key ranges),
+// each part's count becomes its offset inside the key (parts in order: stability), the key
+// totals are scanned into the start of every key (in parallel, by ranges), and each part
+// scatters its particles to start + offset. Particles with key -1 are dropped and reported in
+// order. This is the scheme of a parallel radix-sort pass (Satish et al. 2009; Zagha & Blelloch
+// 1991) with windows in place of full per-thread histograms.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace vrsph {
+
+class KeySort {
+ public:
+  // keys[i] in [0, nkeys) or -1 (dropped). On return begin has nkeys + 1 entries, begin[k] ..
+  // begin[k + 1] being the sorted positions of key k; perm[s] is the index of the particle at
+  // sorted position s; dropped lists the indices with key -1 in increasing order.
+  void sort(const std::vector<std::int64_t>& keys, std::size_t nkeys,
+            std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm,
+            std::vector<std::uint32_t>& dropped);
+
+ private:
+  struct Part {
+    std::int64_t first = 0, last = 0;  // particle range [first, last)
+    std::int64_t lo = 0, hi = -1;      // key window [lo, hi]; empty when hi < lo
+    std::vector<std::uint32_t> count;  // per key of the window: count, then offset in the key
+    std::vector<std::uint32_t> dropped;
+  };
+  void count_part(const std::vector<std::int64_t>& keys, Part& part);
+  void key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin);
+  static void exclusive_scan(std::vector<std::uint32_t>& begin, std::size_t nkeys, int parts);
+
+  std::vector<Part> parts_;
+};
+
+}  // namespace vrsph

@@ -1,0 +1,79 @@
+// The parallel stable counting sort (particles/key_sort.hpp): the same permutation, key starts
+// and dropped list as a plain serial stable sort, for any thread count, on keys that are nearly
+// sorted (as after a previous step), on keys in reverse order (every part's window spans the
+// whole key range) and with dropped particles.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "vrsph/exec/parallel.hpp"
+#include "vrsph/particles/key_sort.hpp"
+
+namespace {
+
+struct Sorted {
+  std::vector<std::uint32_t> begin, perm, dropped;
+};
+
+Sorted serial_sort(const std::vector<std::int64_t>& keys, std::size_t nkeys) {
+  Sorted s;
+  for (std::uint32_t i = 0; i < keys.size(); ++i) {
+    if (keys[i] < 0)
+      s.dropped.push_back(i);
+    else
+      s.perm.push_back(i);
+  }
+  std::stable_sort(s.perm.begin(), s.perm.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  s.begin.assign(nkeys + 1, 0);
+  for (std::uint32_t i : s.perm) ++s.begin[static_cast<std::size_t>(keys[i]) + 1];
+  std::partial_sum(s.begin.begin(), s.begin.end(), s.begin.begin());
+  return s;
+}
+
+void expect_same_for_all_thread_counts(const std::vector<std::int64_t>& keys, std::size_t nkeys) {
+  const Sorted want = serial_sort(keys, nkeys);
+  const int before = vrsph::exec::thread_count();
+  for (int threads : {1, 2, 3, 7}) {
+    vrsph::exec::set_thread_count(threads);
+    vrsph::KeySort sorter;
+    Sorted got;
+    got.begin.assign(nkeys + 1, 12345);  // stale values must not survive
+    sorter.sort(keys, nkeys, got.begin, got.perm, got.dropped);
+    EXPECT_EQ(got.perm, want.perm) << threads << " threads";
+    EXPECT_EQ(got.begin, want.begin) << threads << " threads";
+    EXPECT_EQ(got.dropped, want.dropped) << threads << " threads";
+  }
+  vrsph::exec::set_thread_count(before);
+}
+
+TEST(KeySort, NearlySortedKeysWithDropsMatchASerialStableSort) {
+  std::mt19937 rng(7);
+  const std::size_t n = 5000, nkeys = 2000;
+  std::vector<std::int64_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto base = static_cast<std::int64_t>(i * nkeys / n);  // sorted, several per key
+    keys[i] = std::clamp<std::int64_t>(base + static_cast<std::int64_t>(rng() % 5) - 2, 0,
+                                       static_cast<std::int64_t>(nkeys) - 1);
+    if (rng() % 97 == 0) keys[i] = -1;
+  }
+  expect_same_for_all_thread_counts(keys, nkeys);
+}
+
+TEST(KeySort, ReversedAndRepeatedKeysMatchASerialStableSort) {
+  const std::size_t n = 3001, nkeys = 50;
+  std::vector<std::int64_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i) keys[i] = static_cast<std::int64_t>((n - i) % nkeys);
+  expect_same_for_all_thread_counts(keys, nkeys);
+}
+
+TEST(KeySort, EmptyAndAllDropped) {
+  expect_same_for_all_thread_counts({}, 10);
+  expect_same_for_all_thread_counts(std::vector<std::int64_t>(17, -1), 10);
+}
+
+}  // namespace
