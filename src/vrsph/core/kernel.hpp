@@ -32,17 +32,20 @@ struct WendlandC2 {
   double support() const { return 2.0 * h; }
 
   // W(r) for 0 <= r <= 2h.
-  double w(double r) const {
-    const double q = r * inv_h;
-    const double t = 1.0 - 0.5 * q;
-    const double t2 = t * t;
-    return a_d * t2 * t2 * (2.0 * q + 1.0);
+  // T: the pass's arithmetic type (double, or float in mixed precision).
+  template <class T>
+  T w(T r) const {
+    const T q = r * T(inv_h);
+    const T t = T(1) - T(0.5) * q;
+    const T t2 = t * t;
+    return T(a_d) * t2 * t2 * (T(2) * q + T(1));
   }
 
   // F(r) = W'(r) / r for 0 <= r <= 2h (finite at r = 0).
-  double f(double r) const {
-    const double t = 1.0 - 0.5 * r * inv_h;
-    return f_coef * t * t * t;
+  template <class T>
+  T f(T r) const {
+    const T t = T(1) - T(0.5) * r * T(inv_h);
+    return T(f_coef) * t * t * t;
   }
 };
 

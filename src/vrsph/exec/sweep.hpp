@@ -17,38 +17,46 @@
 
 namespace vrsph {
 
+// The sweep runs in the arithmetic type T of its block's columns: double, or float in the mixed
+// precision (core/precision.hpp), where the block's positions are relative to its origin.
+
 // Pair (i, j) seen from i. rz = 0 in 2D.
-struct PairGeometry {
-  double rx, ry, rz;  // r_ij = r_i - r_j
-  double r2, r;       // |r_ij|^2, |r_ij|
-  double w;           // W(|r_ij|), 0 outside the support
-  double f;           // F(|r_ij|) = W'(r)/r, 0 outside the support: grad_i W_ij = f r_ij
-  double in;          // 1 when 0 < |r_ij| < 2h, else 0 (a double, not a bool: a byte-sized
-                      // member would set the vector width of the whole loop)
+template <class T>
+struct PairGeometryT {
+  T rx, ry, rz;  // r_ij = r_i - r_j
+  T r2, r;       // |r_ij|^2, |r_ij|
+  T w;           // W(|r_ij|), 0 outside the support
+  T f;           // F(|r_ij|) = W'(r)/r, 0 outside the support: grad_i W_ij = f r_ij
+  T in;          // 1 when 0 < |r_ij| < 2h, else 0 (a T, not a bool: a byte-sized member would
+                 // set the vector width of the whole loop)
 };
+using PairGeometry = PairGeometryT<double>;
 
 // The terms of one pair that a body returns: up to 12 sums and one maximum, zero (and -1e300)
 // when the body starts. The sweep adds them to its reductions; a body names the slots it uses,
 // the others cost nothing.
-struct PairSums {
-  double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0, s9 = 0, s10 = 0,
-         s11 = 0;
-  double max = -1e300;
+template <class T>
+struct PairSumsT {
+  T s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0, s9 = 0, s10 = 0,
+    s11 = 0;
+  T max = lowest();
+  static constexpr T lowest() { return sizeof(T) == sizeof(double) ? T(-1e300) : T(-1e38); }
 };
+using PairSums = PairSumsT<double>;
 
 // Candidate j's columns, read by the sweep and handed to the body as values.
-template <int K>
+template <int K, class T = double>
 struct Neighbour {
-  double c[K];
-  double operator[](int k) const { return c[k]; }
+  T c[K];
+  T operator[](int k) const { return c[k]; }
 };
 
 // Candidate j's columns, one load per column written out (a loop over k here could stay a loop
 // inside the vectorised one).
-template <int K>
-[[gnu::always_inline]] inline Neighbour<K> load_neighbour(const double* const (&col)[12],
-                                                          std::ptrdiff_t j) {
-  Neighbour<K> nb;
+template <int K, class T>
+[[gnu::always_inline]] inline Neighbour<K, T> load_neighbour(const T* const (&col)[12],
+                                                             std::ptrdiff_t j) {
+  Neighbour<K, T> nb;
   if constexpr (K > 0) nb.c[0] = col[0][j];
   if constexpr (K > 1) nb.c[1] = col[1][j];
   if constexpr (K > 2) nb.c[2] = col[2][j];
@@ -65,9 +73,9 @@ template <int K>
 }
 
 // Adds the first NS slots of t into lane l of the sums.
-template <int NS, int L>
-[[gnu::always_inline]] inline void add_to_lane(double (&acc)[NS > 0 ? NS : 1][L], int l,
-                                               const PairSums& t) {
+template <int NS, int L, class T>
+[[gnu::always_inline]] inline void add_to_lane(T (&acc)[NS > 0 ? NS : 1][L], int l,
+                                               const PairSumsT<T>& t) {
   if constexpr (NS > 0) acc[0][l] += t.s0;
   if constexpr (NS > 1) acc[1][l] += t.s1;
   if constexpr (NS > 2) acc[2][l] += t.s2;
@@ -90,47 +98,47 @@ inline constexpr int kSweepLanes = 8;
 
 // Sweeps x_i against the `len` candidates (a multiple of kSweepLanes) of a block whose columns
 // 0..D-1 are positions, and calls body(geometry, neighbour) -> PairSums for each.
-// sum[k] += slot k for the first NS slots; vmax = max(vmax, max) when kMax.
+// sum[k] += slot k for the first NS slots; vmax = max(vmax, max) when kMax. xi_in: x_i in the
+// block's frame (relative to its origin). The lanes sum in T; their total is formed in double.
 // The inner loop over lanes has no dependence between iterations, no reduction and no branch,
 // so the compiler vectorises it as it is (no `omp simd`): GCC 12 turned an `omp simd` reduction
 // loop around a pass's lambda into scalar code on AVX2 (docs/validation.md, "Vectorisation of
 // the passes"). The body reads values (the neighbour's columns and what its closure captured by
 // value) and returns its terms by value.
-template <int D, int K, int NS, bool kMax, class Body>
-[[gnu::always_inline]] inline void sweep_pairs(const WendlandC2<D>& kernel_in,
-                                               const double xi_in[3],
-                                               const std::array<std::vector<double>, K>& cols,
+template <int D, int K, int NS, bool kMax, class T, class Body>
+[[gnu::always_inline]] inline void sweep_pairs(const WendlandC2<D>& kernel_in, const T xi_in[3],
+                                               const std::array<std::vector<T>, K>& cols,
                                                std::ptrdiff_t len, Body body, double (&sum)[12],
                                                double& vmax) {
   static_assert(K <= 12 && NS <= 12, "sweep_pairs reads at most 12 columns into 12 sums");
   if (len == 0) return;  // an empty block (most fluid particles' wall block) costs no set-up
   constexpr int L = kSweepLanes;
   const WendlandC2<D> kernel = kernel_in;  // local copies: nothing in the loop can alias them
-  const double xi[3] = {xi_in[0], xi_in[1], D == 3 ? xi_in[D - 1] : 0.0};
-  const double* col[12] = {};
+  const T xi[3] = {xi_in[0], xi_in[1], D == 3 ? xi_in[D - 1] : T(0)};
+  const T* col[12] = {};
   for (int k = 0; k < K; ++k) col[k] = cols[k].data();
-  const double support2 = kernel.support2;
-  double acc[NS > 0 ? NS : 1][L] = {};
-  double mx[L];
-  for (int l = 0; l < L; ++l) mx[l] = -1e300;
+  const T support2 = T(kernel.support2);
+  T acc[NS > 0 ? NS : 1][L] = {};
+  T mx[L];
+  for (int l = 0; l < L; ++l) mx[l] = PairSumsT<T>::lowest();
   for (std::ptrdiff_t j0 = 0; j0 < len; j0 += L) {
     for (int l = 0; l < L; ++l) {
       const std::ptrdiff_t j = j0 + l;
-      const Neighbour<K> nb = load_neighbour<K>(col, j);
-      PairGeometry g;
+      const Neighbour<K, T> nb = load_neighbour<K, T>(col, j);
+      PairGeometryT<T> g;
       g.rx = xi[0] - nb.c[0];
       g.ry = xi[1] - nb.c[1];
-      g.rz = D == 3 ? xi[2] - nb.c[D - 1] : 0.0;
+      g.rz = D == 3 ? xi[2] - nb.c[D - 1] : T(0);
       g.r2 = g.rx * g.rx + g.ry * g.ry + g.rz * g.rz;
-      const bool in = (g.r2 < support2) & (g.r2 > 0.0);  // `&`: both tests without a branch
-      g.in = in ? 1.0 : 0.0;
+      const bool in = (g.r2 < support2) & (g.r2 > T(0));  // `&`: both tests without a branch
+      g.in = in ? T(1) : T(0);
       g.r = std::sqrt(g.r2);
       // Both kernel values are evaluated for every candidate (finite even for the far dummies)
       // and then selected, so no operation sits under a condition.
-      const double f = kernel.f(g.r), w = kernel.w(g.r);
-      g.f = in ? f : 0.0;
-      g.w = in ? w : 0.0;
-      const PairSums t = body(g, nb);
+      const T f = kernel.f(g.r), w = kernel.w(g.r);
+      g.f = in ? f : T(0);
+      g.w = in ? w : T(0);
+      const PairSumsT<T> t = body(g, nb);
       add_to_lane<NS>(acc, l, t);
       if constexpr (kMax) mx[l] = mx[l] < t.max ? t.max : mx[l];
     }
@@ -141,7 +149,7 @@ template <int D, int K, int NS, bool kMax, class Body>
     sum[k] += s;
   }
   if constexpr (kMax) {
-    for (int l = 0; l < L; ++l) vmax = std::max(vmax, mx[l]);
+    for (int l = 0; l < L; ++l) vmax = std::max(vmax, static_cast<double>(mx[l]));
   }
 }
 

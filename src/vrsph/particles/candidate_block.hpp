@@ -5,12 +5,16 @@
 // block (particles are sorted by cell, so consecutive particles reuse it): the copy is amortised.
 // Columns 0..D-1 hold the positions; the rest are whatever the pass reads (velocity, density,
 // volume, lambda, normal, ...), each with the value its dummies take.
+// The columns hold the pass's arithmetic type T. With T = float (mixed precision) the positions
+// are stored relative to the block's origin, one of its candidates: |x_j - origin| spans a few
+// cells, so float keeps r_ij to about 1e-7 h wherever the particles are in the domain.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include "vrsph/particles/cell_grid.hpp"
@@ -24,25 +28,39 @@ inline constexpr double kFarAway = 1e15;
 // Which groups of the grid a block takes: the fluid group (fluid and buffer), walls, or both.
 enum class Groups : int { fluid = 1, wall = 2, all = 3 };
 
-template <int K>
+template <int K, class T = double>
 struct CandidateBlock {
-  std::array<std::vector<double>, K> col;
-  std::size_t len = 0;     // padded length
-  std::int64_t cell = -1;  // cell the block was gathered for (-1: none yet)
+  static constexpr bool kRelative = !std::is_same_v<T, double>;
+  std::array<std::vector<T>, K> col;
+  double origin[3] = {0.0, 0.0, 0.0};  // position columns hold x - origin (0 for T = double)
+  std::size_t len = 0;                 // padded length
+  std::int64_t cell = -1;              // first cell of the block gathered (-1: none yet)
+  std::int64_t requested = -1;         // the cell last asked for, which maps to `cell`
   Groups groups = Groups::fluid;
 
   // Gathers the columns src[k] (each of the grid's particle count) of the particles in the
   // stencil of cell c, unless the block already holds that cell and groups. pad[k]: the value of
-  // column k on the dummies.
+  // column k on the dummies. With T = float, only the positions (k < D) come from src; the other
+  // columns come from the float sources rest[k].
   template <int D>
   void gather(const std::array<const double*, K>& src, const std::array<double, K>& pad,
-              const CellGrid<D>& grid, std::int64_t c, Groups g) {
+              const CellGrid<D>& grid, std::int64_t c, Groups g,
+              const std::array<const T*, K>* rest = nullptr) {
+    if (c == requested && g == groups) return;  // consecutive particles share their cell
+    requested = c;
     c = grid.block_first(c);
     if (c == cell && g == groups) return;
     cell = c;
     groups = g;
     std::size_t n = 0, runs = 0;
+    [[maybe_unused]] bool first = true;
     for_each_group_run(grid, c, g, [&](std::uint32_t b, std::uint32_t e) {
+      if constexpr (kRelative) {
+        if (first && e > b) {  // the origin: the first candidate (the runs' order is fixed)
+          for (int k = 0; k < D; ++k) origin[k] = src[k][b];
+          first = false;
+        }
+      }
       n += e - b;
       ++runs;
     });
@@ -54,31 +72,53 @@ struct CandidateBlock {
     const std::size_t src_size = grid.group_end(Group::wall);
     std::size_t at = 0;
     for_each_group_run(grid, c, g, [&](std::uint32_t b, std::uint32_t e) {
-      copy_run(src, b, e, src_size, at);
+      copy_run<D>(src, rest, b, e, src_size, at);
       at += e - b;
     });
-    for (int k = 0; k < K; ++k) std::fill(col[k].begin() + at, col[k].begin() + len, pad[k]);
+    for (int k = 0; k < K; ++k)
+      std::fill(col[k].begin() + at, col[k].begin() + len, static_cast<T>(pad[k]));
+  }
+
+  // x_i in the block's frame.
+  void frame(const double x[3], T out[3]) const {
+    for (int k = 0; k < 3; ++k) out[k] = static_cast<T>(x[k] - origin[k]);
   }
 
  private:
-  // Copies src[k][b, e) to col[k] at `at`. Runs are short (a few cells), so a call of memmove
-  // per run and column would cost more than the copy: whole chunks of kBlockPad values are
-  // copied with fixed-size moves instead, overshooting the run's end by less than a chunk (the
-  // next run or the padding overwrites it). Only a run whose last chunk would read past the
-  // source arrays is copied element by element.
-  void copy_run(const std::array<const double*, K>& src, std::size_t b, std::size_t e,
-                std::size_t src_size, std::size_t at) {
+  // Copies column k of particles [b, e) to col[k] at `at`. Runs are short (a few cells), so a
+  // call of memmove per run and column would cost more than the copy: whole chunks of kBlockPad
+  // values are copied with fixed-size moves instead, overshooting the run's end by less than a
+  // chunk (the next run or the padding overwrites it). Only a run whose last chunk would read
+  // past the source arrays is copied element by element. With T = float the positions are
+  // converted on the way (minus the origin) and the rest is copied from the float sources.
+  template <int D>
+  void copy_run(const std::array<const double*, K>& src, const std::array<const T*, K>* rest,
+                std::size_t b, std::size_t e, std::size_t src_size, std::size_t at) {
     constexpr std::size_t P = kBlockPad;
     const std::size_t chunks = (e - b + P - 1) / P;
-    if (b + chunks * P <= src_size) {
-      for (int k = 0; k < K; ++k) {
-        const double* from = src[k] + b;
-        double* to = col[k].data() + at;
-        for (std::size_t q = 0; q < chunks; ++q)
-          std::memcpy(to + q * P, from + q * P, sizeof(double) * P);
+    const bool whole = b + chunks * P <= src_size;
+    for (int k = 0; k < K; ++k) {
+      T* to = col[k].data() + at;
+      if constexpr (kRelative) {
+        if (k < D) {
+          const double o = origin[k];
+          const double* from = src[k] + b;
+          const std::size_t len = whole ? chunks * P : e - b;
+          for (std::size_t q = 0; q < len; ++q) to[q] = static_cast<T>(from[q] - o);
+          continue;
+        }
       }
-    } else {
-      for (int k = 0; k < K; ++k) std::copy(src[k] + b, src[k] + e, col[k].begin() + at);
+      const T* from = nullptr;
+      if constexpr (kRelative)
+        from = (*rest)[k] + b;
+      else
+        from = src[k] + b;
+      if (whole) {
+        for (std::size_t q = 0; q < chunks; ++q)
+          std::memcpy(to + q * P, from + q * P, sizeof(T) * P);
+      } else {
+        std::copy(from, from + (e - b), to);
+      }
     }
   }
 

@@ -6,7 +6,8 @@
 
 namespace vrsph {
 
-inline double continuity_pair(double rho_i, double vol_j, double f, double vij_dot_rij) {
+template <class T>
+inline T continuity_pair(T rho_i, T vol_j, T f, T vij_dot_rij) {
   return rho_i * vol_j * f * vij_dot_rij;
 }
 

@@ -41,35 +41,39 @@ inline DiffusionLevel diffusion_level(const DiffusionParams& p, const TaitEos& e
   return d;
 }
 
-inline double molteni_diffusion_pair(double two_delta_h_c0, double vol_j, double rho_i,
-                                     double rho_j, double rij_dot_gradw, double inv_r2eta) {
-  return two_delta_h_c0 * vol_j * (rho_i - rho_j) * rij_dot_gradw * inv_r2eta;
+// The pair functions take the pass's arithmetic type T (double or float). rho_i - rho_j is
+// passed as one value: the mixed precision forms it from deviations rho - rho0, exactly.
+template <class T>
+inline T molteni_diffusion_pair(T two_delta_h_c0, T vol_j, T rho_i_minus_j, T rij_dot_gradw,
+                                T inv_r2eta) {
+  return two_delta_h_c0 * vol_j * rho_i_minus_j * rij_dot_gradw * inv_r2eta;
 }
 
 // (1 + x)^a - 1 for the tiny x of the hydrostatic density difference across one support
 // (|x| = rho0 g |z_ij| / B <= 2 gamma g h / c0^2, about 1e-4 in practice): the binomial series to
 // fifth order, with a truncation below 2e-11 of the result for |x| <= fourtakas_series_bound. The
 // set-up refuses cases beyond that bound.
-inline double binomial_series_minus_one(double x, double a) {
-  const double c1 = a;
-  const double c2 = c1 * (a - 1.0) / 2.0;
-  const double c3 = c2 * (a - 2.0) / 3.0;
-  const double c4 = c3 * (a - 3.0) / 4.0;
-  const double c5 = c4 * (a - 4.0) / 5.0;
+template <class T>
+inline T binomial_series_minus_one(T x, T a) {
+  const T c1 = a;
+  const T c2 = c1 * (a - T(1)) / T(2);
+  const T c3 = c2 * (a - T(2)) / T(3);
+  const T c4 = c3 * (a - T(3)) / T(4);
+  const T c5 = c4 * (a - T(4)) / T(5);
   return x * (c1 + x * (c2 + x * (c3 + x * (c4 + x * c5))));
 }
 inline constexpr double fourtakas_series_bound = 1.0e-2;
 
 // rho^H_ij of Fourtakas et al. (2019); rho0_g_over_b = rho0 |g| / B.
-inline double hydrostatic_density_difference(double rho0, double rho0_g_over_b, double inv_gamma,
-                                             double z_ij) {
+template <class T>
+inline T hydrostatic_density_difference(T rho0, T rho0_g_over_b, T inv_gamma, T z_ij) {
   return rho0 * binomial_series_minus_one(rho0_g_over_b * z_ij, inv_gamma);
 }
 
-inline double fourtakas_diffusion_pair(double two_delta_h_c0, double vol_j, double rho_i,
-                                       double rho_j, double rho_h, double rij_dot_gradw,
-                                       double inv_r2eta) {
-  return two_delta_h_c0 * vol_j * ((rho_i - rho_j) + rho_h) * rij_dot_gradw * inv_r2eta;
+template <class T>
+inline T fourtakas_diffusion_pair(T two_delta_h_c0, T vol_j, T rho_i_minus_j, T rho_h,
+                                  T rij_dot_gradw, T inv_r2eta) {
+  return two_delta_h_c0 * vol_j * (rho_i_minus_j + rho_h) * rij_dot_gradw * inv_r2eta;
 }
 
 }  // namespace vrsph

@@ -7,7 +7,8 @@
 
 namespace vrsph {
 
-inline double pressure_pair(double p_i, double p_j, double vol_j, double inv_rho_i) {
+template <class T>
+inline T pressure_pair(T p_i, T p_j, T vol_j, T inv_rho_i) {
   return -(p_i + p_j) * vol_j * inv_rho_i;
 }
 

@@ -43,30 +43,35 @@ inline ViscosityLevel viscosity_level(const ViscosityParams& p, double nu_fluid,
 // The two reciprocals of a pair's viscous and diffusive terms from one division,
 // 1 / ((r^2 + eta2)(rho_i + rho_j)): the force loop is bound by the divider (a division costs as
 // much as eight multiplications), and three divisions per pair became one.
+// The pair functions take the pass's arithmetic type T (double, or float in the mixed
+// precision of core/precision.hpp); every argument has that type.
+template <class T>
 struct PairReciprocals {
-  double inv_r2eta;    // 1 / (r^2 + eta2)
-  double inv_rho_sum;  // 1 / (rho_i + rho_j)
+  T inv_r2eta;    // 1 / (r^2 + eta2)
+  T inv_rho_sum;  // 1 / (rho_i + rho_j)
 };
-inline PairReciprocals pair_reciprocals(double r2, double eta2, double rho_i, double rho_j) {
-  const double r2eta = r2 + eta2, rho_sum = rho_i + rho_j;
-  const double d = 1.0 / (r2eta * rho_sum);
+template <class T>
+inline PairReciprocals<T> pair_reciprocals(T r2, T eta2, T rho_i, T rho_j) {
+  const T r2eta = r2 + eta2, rho_sum = rho_i + rho_j;
+  const T d = T(1) / (r2eta * rho_sum);
   return {d * rho_sum, d * r2eta};
 }
 
-inline double laminar_viscosity_pair(double m_j, double nu, double rij_dot_gradw, double inv_r2eta,
-                                     double inv_rho_sum) {
-  return m_j * 4.0 * nu * rij_dot_gradw * inv_r2eta * inv_rho_sum;
+template <class T>
+inline T laminar_viscosity_pair(T m_j, T nu, T rij_dot_gradw, T inv_r2eta, T inv_rho_sum) {
+  return m_j * T(4) * nu * rij_dot_gradw * inv_r2eta * inv_rho_sum;
 }
 
-inline double artificial_viscosity_pair(double m_j, double alpha_c0_h, double vij_dot_rij,
-                                        double inv_r2eta, double inv_rho_sum) {
-  const double mu = vij_dot_rij * inv_r2eta;
-  const double pi_ij = -alpha_c0_h * mu * (2.0 * inv_rho_sum);  // rho_bar_ij = (rho_i + rho_j) / 2
-  const double approaching = vij_dot_rij < 0.0 ? 1.0 : 0.0;     // a factor, not a branch
+template <class T>
+inline T artificial_viscosity_pair(T m_j, T alpha_c0_h, T vij_dot_rij, T inv_r2eta, T inv_rho_sum) {
+  const T mu = vij_dot_rij * inv_r2eta;
+  const T pi_ij = -alpha_c0_h * mu * (T(2) * inv_rho_sum);  // rho_bar_ij = (rho_i + rho_j) / 2
+  const T approaching = vij_dot_rij < T(0) ? T(1) : T(0);   // a factor, not a branch
   return approaching * (-m_j * pi_ij);
 }
 
-inline double viscous_dt_measure(double vij_dot_rij, double inv_r2eta) {
+template <class T>
+inline T viscous_dt_measure(T vij_dot_rij, T inv_r2eta) {
   return vij_dot_rij * inv_r2eta;
 }
 

@@ -82,6 +82,8 @@ inline constexpr EnumName<WallShape> kWallShapeNames[] = {{"tank", WallShape::ta
                                                           {"box", WallShape::box}};
 inline constexpr EnumName<OutputPrecision> kPrecisionNames[] = {
     {"double", OutputPrecision::float64}, {"float32", OutputPrecision::float32}};
+inline constexpr EnumName<Precision> kArithmeticNames[] = {{"double", Precision::double_precision},
+                                                           {"mixed", Precision::mixed}};
 inline constexpr EnumName<OutputCompression> kCompressionNames[] = {
     {"none", OutputCompression::none}, {"zlib", OutputCompression::zlib}};
 

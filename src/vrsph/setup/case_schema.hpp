@@ -22,6 +22,7 @@ inline constexpr std::string_view kEosKeys[] = {"gamma", "max_speed", "sound_spe
                                                 "sound_speed"};
 inline constexpr std::string_view kResolutionKeys[] = {"dp", "h_over_dp"};
 inline constexpr std::string_view kNumericsKeys[] = {"cfl",
+                                                     "precision",
                                                      "viscosity",
                                                      "density_diffusion",
                                                      "shifting",

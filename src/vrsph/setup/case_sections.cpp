@@ -150,10 +150,11 @@ void read_surface_tension(const TableReader& n, SurfaceTensionParams& p) {
   p.zero_net_force = r.opt_bool("zero_net_force").value_or(p.zero_net_force);
 }
 
-// [numerics]: cfl, the model tables, the coupling's two keys and the initial density.
+// [numerics]: cfl, precision, the model tables, the coupling's two keys and the initial density.
 void parse_numerics(const TableReader& r, CaseSpec& spec) {
   NumericsSpec& n = spec.numerics;
   n.cfl = r.opt_number("cfl", kUnitHalfOpen).value_or(n.cfl);
+  n.precision = r.opt_enum("precision", kArithmeticNames).value_or(n.precision);
   read_viscosity(r, n.viscosity);
   read_density_diffusion(r, n.density_diffusion);
   read_shifting(r, spec.dimension, n.shifting);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "vrsph/core/precision.hpp"
 #include "vrsph/physics/density_diffusion.hpp"
 #include "vrsph/physics/eos.hpp"
 #include "vrsph/physics/shifting.hpp"
@@ -89,7 +90,8 @@ struct FluidSpec {
 
 // [numerics]: the time step, one table per model (each the model's own struct) and the start.
 struct NumericsSpec {
-  double cfl = 0.2;  // CFL number of the time step (dimensionless)
+  double cfl = 0.2;                                   // CFL number of the time step (dimensionless)
+  Precision precision = Precision::double_precision;  // of the force pass (core/precision.hpp)
   ViscosityParams viscosity;
   DiffusionParams density_diffusion;
   ShiftingParams shifting;

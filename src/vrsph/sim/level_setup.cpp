@@ -49,6 +49,7 @@ SolverParams<D> level_params(const CaseSpec& spec, double dp, double c0) {
   prm.up = g > 0.0 ? prm.gravity * (-1.0 / g) : Vec<D>{};
   prm.eos = TaitEos(spec.fluid.density, spec.eos.gamma, c0);
   prm.cfl = spec.numerics.cfl;
+  prm.precision = spec.numerics.precision;
   prm.sigma = spec.fluid.surface_tension;
   const NumericsSpec& n = spec.numerics;
   prm.viscosity = viscosity_level(n.viscosity, spec.fluid.kinematic_viscosity, c0, prm.h);

@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "vrsph/core/precision.hpp"
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/physics/eos.hpp"
@@ -15,9 +16,15 @@ namespace vrsph {
 
 template <int D>
 struct LevelColumns {
-  std::array<std::vector<double>, D> x, v;  // position, velocity
-  std::vector<double> rho, p, vol, mass;    // p from the EOS, vol = m / rho
-  std::vector<double> wall_vol;             // the volume seen by a wall's continuity sum
+  std::array<std::vector<double>, D> x, v;    // position, velocity
+  std::vector<double> rho_dev, p, vol, mass;  // rho - rho0, p from the EOS, vol = m / rho
+  std::vector<double> wall_vol;               // the volume seen by a wall's continuity sum
+  // Float copies of the non-position columns, for the mixed precision's candidate blocks
+  // (core/precision.hpp); empty in double precision.
+  struct Floats {
+    std::array<std::vector<float>, D> v;
+    std::vector<float> rho_dev, p, vol, mass, wall_vol;
+  } f;
 
   // Positions and volumes only (the surface passes' needs), from a read-only particle set.
   void pack_geometry(const ParticleSet<D>& ps) {
@@ -30,26 +37,54 @@ struct LevelColumns {
     });
   }
 
-  // Copies the particle state and fills ps.p from the EOS on the way.
-  void pack(ParticleSet<D>& ps, const TaitEos& eos) {
+  // Copies the particle state and fills ps.p from the EOS on the way. The density is kept as
+  // its deviation rho - rho0: differences of two densities are then exact in float too. In mixed
+  // precision the force pass reads only the float columns besides x (and the surface passes x and
+  // vol), so the other double columns are left empty.
+  void pack(ParticleSet<D>& ps, const TaitEos& eos,
+            Precision precision = Precision::double_precision) {
     const std::size_t n = ps.size();
-    for (int k = 0; k < D; ++k) {
-      x[k].resize(n);
-      v[k].resize(n);
-    }
-    for (auto* c : {&rho, &p, &vol, &mass, &wall_vol}) c->resize(n);
+    for (int k = 0; k < D; ++k) x[k].resize(n);
+    vol.resize(n);
     ps.p.resize(n);
+    if (precision == Precision::mixed) {
+      pack_floats(ps, eos);
+      return;
+    }
+    for (int k = 0; k < D; ++k) v[k].resize(n);
+    for (auto* c : {&rho_dev, &p, &mass, &wall_vol}) c->resize(n);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       for (int k = 0; k < D; ++k) {
         x[k][i] = ps.pos[i][k];
         v[k][i] = ps.vel[i][k];
       }
-      rho[i] = ps.rho[i];
+      rho_dev[i] = ps.rho[i] - eos.rho0;  // exact (Sterbenz) while rho0 / 2 <= rho <= 2 rho0
       ps.p[i] = eos.pressure(ps.rho[i]);
       p[i] = ps.p[i];
       vol[i] = ps.mass[i] / ps.rho[i];
       mass[i] = ps.mass[i];
       wall_vol[i] = wall_continuity_volume(vol[i], ps.kind[i] == Kind::buffer);
+    });
+  }
+
+ private:
+  void pack_floats(ParticleSet<D>& ps, const TaitEos& eos) {
+    const std::size_t n = ps.size();
+    for (int k = 0; k < D; ++k) f.v[k].resize(n);
+    for (auto* c : {&f.rho_dev, &f.p, &f.vol, &f.mass, &f.wall_vol}) c->resize(n);
+    exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+      for (int k = 0; k < D; ++k) {
+        x[k][i] = ps.pos[i][k];
+        f.v[k][i] = static_cast<float>(ps.vel[i][k]);
+      }
+      ps.p[i] = eos.pressure(ps.rho[i]);
+      vol[i] = ps.mass[i] / ps.rho[i];
+      f.rho_dev[i] = static_cast<float>(ps.rho[i] - eos.rho0);
+      f.p[i] = static_cast<float>(ps.p[i]);
+      f.vol[i] = static_cast<float>(vol[i]);
+      f.mass[i] = static_cast<float>(ps.mass[i]);
+      f.wall_vol[i] =
+          static_cast<float>(wall_continuity_volume(vol[i], ps.kind[i] == Kind::buffer));
     });
   }
 };

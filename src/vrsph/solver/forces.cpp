@@ -1,6 +1,7 @@
 #include "vrsph/solver/forces.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/exec/sweep.hpp"
@@ -19,10 +20,11 @@ struct ForceCol {
   static constexpr int v = D, rho = 2 * D, p = rho + 1, vol = rho + 2, mass = rho + 3,
                        wall_vol = rho + 4, count = rho + 5;
 };
-template <int D>
-using ForceBlock = CandidateBlock<ForceCol<D>::count>;
+template <int D, class T>
+using ForceBlock = CandidateBlock<ForceCol<D>::count, T>;
 static_assert(kBlockPad % kSweepLanes == 0, "blocks must fill whole sweep lanes");
 
+// In mixed precision only the positions are read from here (the rest: force_float_sources).
 template <int D>
 std::array<const double*, ForceCol<D>::count> force_sources(const LevelColumns<D>& c) {
   std::array<const double*, ForceCol<D>::count> s{};
@@ -30,7 +32,7 @@ std::array<const double*, ForceCol<D>::count> force_sources(const LevelColumns<D
     s[k] = c.x[k].data();
     s[ForceCol<D>::v + k] = c.v[k].data();
   }
-  s[ForceCol<D>::rho] = c.rho.data();
+  s[ForceCol<D>::rho] = c.rho_dev.data();
   s[ForceCol<D>::p] = c.p.data();
   s[ForceCol<D>::vol] = c.vol.data();
   s[ForceCol<D>::mass] = c.mass.data();
@@ -38,24 +40,52 @@ std::array<const double*, ForceCol<D>::count> force_sources(const LevelColumns<D
   return s;
 }
 
-// Dummies: far away, at rest, unit density (no division by zero), no volume, mass or pressure.
+// The float sources of the non-position columns (mixed precision); positions stay double.
 template <int D>
-std::array<double, ForceCol<D>::count> force_pad() {
-  auto pad = position_pad<ForceCol<D>::count, D>(0.0);
-  pad[ForceCol<D>::rho] = 1.0;
-  return pad;
+std::array<const float*, ForceCol<D>::count> force_float_sources(const LevelColumns<D>& c) {
+  std::array<const float*, ForceCol<D>::count> s{};
+  for (int k = 0; k < D; ++k) s[ForceCol<D>::v + k] = c.f.v[k].data();
+  s[ForceCol<D>::rho] = c.f.rho_dev.data();
+  s[ForceCol<D>::p] = c.f.p.data();
+  s[ForceCol<D>::vol] = c.f.vol.data();
+  s[ForceCol<D>::mass] = c.f.mass.data();
+  s[ForceCol<D>::wall_vol] = c.f.wall_vol.data();
+  return s;
 }
 
-// What one particle i reads of itself.
+// The sources of a block of type T: none beyond `force_sources` for double.
+template <class T, int D>
+auto block_rest(const LevelColumns<D>& c) {
+  if constexpr (std::is_same_v<T, float>) {
+    return force_float_sources(c);
+  } else {
+    return std::array<const double*, ForceCol<D>::count>{};
+  }
+}
+
+// Dummies: far away, at rest, density rho0 (deviation 0: no division by zero), no volume, mass
+// or pressure.
+template <int D>
+std::array<double, ForceCol<D>::count> force_pad() {
+  return position_pad<ForceCol<D>::count, D>(0.0);
+}
+
+// What one particle i reads of itself: its position in double (each block has its own frame),
+// the rest in the pass's type T.
+template <class T>
 struct Self {
   double x[3] = {0.0, 0.0, 0.0};
-  double v[3] = {0.0, 0.0, 0.0};
-  double rho = 1.0, p = 0.0;
+  T v[3] = {0, 0, 0};
+  T rho_dev = 0, p = 0;
   template <int D>
-  Self(const LevelColumns<D>& c, std::uint32_t i) : rho(c.rho[i]), p(c.p[i]) {
-    for (int k = 0; k < D; ++k) {
-      x[k] = c.x[k][i];
-      v[k] = c.v[k][i];
+  Self(const LevelColumns<D>& c, std::uint32_t i) {
+    for (int k = 0; k < D; ++k) x[k] = c.x[k][i];
+    if constexpr (std::is_same_v<T, float>) {
+      for (int k = 0; k < D; ++k) v[k] = c.f.v[k][i];
+      rho_dev = c.f.rho_dev[i], p = c.f.p[i];
+    } else {
+      for (int k = 0; k < D; ++k) v[k] = c.v[k][i];
+      rho_dev = c.rho_dev[i], p = c.p[i];
     }
   }
 };
@@ -69,83 +99,95 @@ struct ForceSums {
 
 // The fluid particle i against one block: pressure, viscosity, continuity and (kWall: not with
 // wall neighbours) density diffusion. Everything the body reads is a value (exec/sweep.hpp).
-template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall>
-inline void fluid_sweep(const SolverParams<D>& prm, const Self& me, const ForceBlock<D>& blk,
+// T: the arithmetic of the pair terms (core/precision.hpp). Densities arrive as deviations
+// rho - rho0 (LevelColumns): rho = rho0 + deviation, exact in double.
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, class T>
+inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const ForceBlock<D, T>& blk,
                         ForceSums& out) {
   using C = ForceCol<D>;
-  const double rho_i = me.rho, p_i = me.p, inv_rho_i = 1.0 / rho_i, eta2 = prm.eta2;
-  const double vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
-  const double nu = prm.viscosity.nu, alpha_c0_h = prm.viscosity.alpha_c0_h;
-  const double two_delta_h_c0 = prm.density_diffusion.two_delta_h_c0;
-  const double rho0_g_over_b = prm.density_diffusion.rho0_g_over_b;
-  const double inv_gamma = prm.density_diffusion.inv_gamma;
-  const double up0 = prm.up[0], up1 = prm.up[1], up2 = prm.up[D - 1], rho0 = prm.eos.rho0;
-  auto pair = [=](const PairGeometry& g, const Neighbour<C::count>& nb) {
-    const double rho_j = nb[C::rho], vol_j = nb[C::vol], m_j = nb[C::mass];
-    const double ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
-    const double uz = D == 3 ? vi2 - nb[C::v + D - 1] : 0.0;
-    const double rij_dot_gradw = g.f * g.r2;
-    const double vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
-    const PairReciprocals rec = pair_reciprocals(g.r2, eta2, rho_i, rho_j);
-    const double inv_r2eta = rec.inv_r2eta;
-    double c = pressure_pair(p_i, nb[C::p], vol_j, inv_rho_i);
+  const T rho0 = static_cast<T>(prm.eos.rho0);
+  const T rho_dev_i = me.rho_dev, rho_i = rho0 + rho_dev_i, p_i = me.p;
+  const T inv_rho_i = T(1) / rho_i, eta2 = static_cast<T>(prm.eta2);
+  const T vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
+  const T nu = static_cast<T>(prm.viscosity.nu);
+  const T alpha_c0_h = static_cast<T>(prm.viscosity.alpha_c0_h);
+  const T two_delta_h_c0 = static_cast<T>(prm.density_diffusion.two_delta_h_c0);
+  const T rho0_g_over_b = static_cast<T>(prm.density_diffusion.rho0_g_over_b);
+  const T inv_gamma = static_cast<T>(prm.density_diffusion.inv_gamma);
+  const T up0 = static_cast<T>(prm.up[0]), up1 = static_cast<T>(prm.up[1]);
+  const T up2 = static_cast<T>(prm.up[D - 1]);
+  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<C::count, T>& nb) {
+    const T rho_dev_j = nb[C::rho], rho_j = rho0 + rho_dev_j, vol_j = nb[C::vol];
+    const T m_j = nb[C::mass], rho_i_minus_j = rho_dev_i - rho_dev_j;
+    const T ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
+    const T uz = D == 3 ? vi2 - nb[C::v + D - 1] : T(0);
+    const T rij_dot_gradw = g.f * g.r2;
+    const T vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
+    const PairReciprocals<T> rec = pair_reciprocals(g.r2, eta2, rho_i, rho_j);
+    const T inv_r2eta = rec.inv_r2eta;
+    T c = pressure_pair(p_i, nb[C::p], vol_j, inv_rho_i);
     if constexpr (VM == ViscosityModel::artificial) {
       c += artificial_viscosity_pair(m_j, alpha_c0_h, vij_dot_rij, inv_r2eta, rec.inv_rho_sum);
     }
     c *= g.f;
-    double ax = c * g.rx, ay = c * g.ry, az = c * g.rz;
+    T ax = c * g.rx, ay = c * g.ry, az = c * g.rz;
     if constexpr (VM == ViscosityModel::laminar) {
-      const double lv = laminar_viscosity_pair(m_j, nu, rij_dot_gradw, inv_r2eta, rec.inv_rho_sum);
+      const T lv = laminar_viscosity_pair(m_j, nu, rij_dot_gradw, inv_r2eta, rec.inv_rho_sum);
       ax += lv * ux;
       ay += lv * uy;
       az += lv * uz;
     }
-    double dr = continuity_pair(rho_i, vol_j, g.f, vij_dot_rij);
+    T dr = continuity_pair(rho_i, vol_j, g.f, vij_dot_rij);
     if constexpr (!kWall && DM == DiffusionModel::molteni) {
-      dr += molteni_diffusion_pair(two_delta_h_c0, vol_j, rho_i, rho_j, rij_dot_gradw, inv_r2eta);
+      dr += molteni_diffusion_pair(two_delta_h_c0, vol_j, rho_i_minus_j, rij_dot_gradw, inv_r2eta);
     } else if constexpr (!kWall && DM == DiffusionModel::fourtakas) {
-      const double z_ij = g.rx * up0 + g.ry * up1 + (D == 3 ? g.rz * up2 : 0.0);
-      const double rho_h = hydrostatic_density_difference(rho0, rho0_g_over_b, inv_gamma, z_ij);
-      dr += fourtakas_diffusion_pair(two_delta_h_c0, vol_j, rho_i, rho_j, rho_h, rij_dot_gradw,
+      // Selected to 0 outside the support: the series of a dummy's z (1e15 m) overflows float.
+      const T z = g.rx * up0 + g.ry * up1 + (D == 3 ? g.rz * up2 : T(0));
+      const T z_ij = g.in != T(0) ? z : T(0);
+      const T rho_h = hydrostatic_density_difference(rho0, rho0_g_over_b, inv_gamma, z_ij);
+      dr += fourtakas_diffusion_pair(two_delta_h_c0, vol_j, rho_i_minus_j, rho_h, rij_dot_gradw,
                                      inv_r2eta);
     }
-    PairSums s;  // drho/dt, pair count, acceleration, viscous dt measure
+    PairSumsT<T> s;  // drho/dt, pair count, acceleration, viscous dt measure
     s.s0 = dr, s.s1 = g.in, s.s2 = ax, s.s3 = ay;
     if constexpr (D == 3) s.s4 = az;
-    s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
+    s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
-  sweep_pairs<D, C::count, 2 + D, true>(prm.kernel, me.x, blk.col,
-                                        static_cast<std::ptrdiff_t>(blk.len), pair, out.s,
-                                        out.max_visc_dt);
+  T xi[3];
+  blk.frame(me.x, xi);
+  sweep_pairs<D, C::count, 2 + D, true>(
+      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, out.s, out.max_visc_dt);
 }
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
-template <int D>
-inline void wall_sweep(const SolverParams<D>& prm, const Self& me, const ForceBlock<D>& blk,
+template <int D, class T>
+inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const ForceBlock<D, T>& blk,
                        ForceSums& out) {
   using C = ForceCol<D>;
-  const double rho_i = me.rho, eta2 = prm.eta2;
-  const double vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
-  auto pair = [=](const PairGeometry& g, const Neighbour<C::count>& nb) {
-    const double ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
-    const double uz = D == 3 ? vi2 - nb[C::v + D - 1] : 0.0;
-    const double vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
-    const double inv_r2eta = 1.0 / (g.r2 + eta2);
-    PairSums s;
+  const T rho_i = static_cast<T>(prm.eos.rho0) + me.rho_dev, eta2 = static_cast<T>(prm.eta2);
+  const T vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
+  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<C::count, T>& nb) {
+    const T ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
+    const T uz = D == 3 ? vi2 - nb[C::v + D - 1] : T(0);
+    const T vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
+    const T inv_r2eta = T(1) / (g.r2 + eta2);
+    PairSumsT<T> s;
     s.s0 = continuity_pair(rho_i, nb[C::wall_vol], g.f, vij_dot_rij);
     s.s1 = g.in;
-    s.max = g.in != 0.0 ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : -1e300;
+    s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
-  sweep_pairs<D, C::count, 2, true>(prm.kernel, me.x, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+  T xi[3];
+  blk.frame(me.x, xi);
+  sweep_pairs<D, C::count, 2, true>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
                                     pair, out.s, out.max_visc_dt);
 }
 
 // Per-thread scratch of the force pass and its statistics (ForceStats::merge across threads).
-template <int D>
+template <int D, class T>
 struct ForceScratch {
-  ForceBlock<D> fluid, wall;
+  ForceBlock<D, T> fluid, wall;
 };
 struct ForceAcc {
   double max_visc_dt = -1e300, max_acc2 = 0.0;
@@ -164,17 +206,19 @@ Vec<D> acceleration(const ForceSums& s) {
   return a;
 }
 
-template <int D, ViscosityModel VM, DiffusionModel DM>
+template <int D, ViscosityModel VM, DiffusionModel DM, class T>
 ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
                       const LevelColumns<D>& cols, const Vec<D>* extra_acc, bool buffer_reaction) {
   const auto& cells = grid.particle_cells();
   const auto src = force_sources(cols);
   const auto pad = force_pad<D>();
-  auto body = [&](std::int64_t ii, ForceScratch<D>& scratch, ForceAcc& acc) {
+  const auto rest = block_rest<T>(cols);
+  const auto* rest_ptr = std::is_same_v<T, float> ? &rest : nullptr;
+  auto body = [&](std::int64_t ii, ForceScratch<D, T>& scratch, ForceAcc& acc) {
     const auto i = static_cast<std::uint32_t>(ii);
-    const Self me(cols, i);
+    const Self<T> me(cols, i);
     ForceSums s;
-    scratch.fluid.gather(src, pad, grid, cells[i], Groups::fluid);
+    scratch.fluid.gather(src, pad, grid, cells[i], Groups::fluid, rest_ptr);
     if (ps.kind[i] == Kind::buffer) {
       // v and rho come from another level: acc is only the reaction of this level's fluid and
       // buffer neighbours (walls left out), from which the coupling measures the net force the
@@ -188,7 +232,7 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       wall_sweep(prm, me, scratch.fluid, s);
     } else {
       fluid_sweep<D, VM, DM, false>(prm, me, scratch.fluid, s);
-      scratch.wall.gather(src, pad, grid, cells[i], Groups::wall);
+      scratch.wall.gather(src, pad, grid, cells[i], Groups::wall, rest_ptr);
       fluid_sweep<D, VM, DM, true>(prm, me, scratch.wall, s);
     }
     Vec<D> a = acceleration<D>(s);
@@ -199,24 +243,33 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     acc.max_visc_dt = std::max(acc.max_visc_dt, s.max_visc_dt);
     acc.pairs += static_cast<std::uint64_t>(s.s[1]);
   };
-  const ForceAcc total = exec::for_each_gather<ForceScratch<D>, ForceAcc>(
+  const ForceAcc total = exec::for_each_gather<ForceScratch<D, T>, ForceAcc>(
       static_cast<std::int64_t>(ps.size()), 512, body);
   return {total.max_visc_dt, std::sqrt(total.max_acc2), total.pairs};
 }
 
-template <int D, ViscosityModel VM>
+template <int D, ViscosityModel VM, class T>
 ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
                               const CellGrid<D>& grid, const LevelColumns<D>& cols,
                               const Vec<D>* extra, bool br) {
   switch (prm.density_diffusion.model) {
     case DiffusionModel::none:
-      return force_pass<D, VM, DiffusionModel::none>(prm, ps, grid, cols, extra, br);
+      return force_pass<D, VM, DiffusionModel::none, T>(prm, ps, grid, cols, extra, br);
     case DiffusionModel::molteni:
-      return force_pass<D, VM, DiffusionModel::molteni>(prm, ps, grid, cols, extra, br);
+      return force_pass<D, VM, DiffusionModel::molteni, T>(prm, ps, grid, cols, extra, br);
     case DiffusionModel::fourtakas:
-      return force_pass<D, VM, DiffusionModel::fourtakas>(prm, ps, grid, cols, extra, br);
+      return force_pass<D, VM, DiffusionModel::fourtakas, T>(prm, ps, grid, cols, extra, br);
   }
   return {};
+}
+
+template <int D, class T>
+ForceStats dispatch_viscosity(const SolverParams<D>& prm, ParticleSet<D>& ps,
+                              const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                              const Vec<D>* extra, bool br) {
+  if (prm.viscosity.model == ViscosityModel::laminar)
+    return dispatch_diffusion<D, ViscosityModel::laminar, T>(prm, ps, grid, cols, extra, br);
+  return dispatch_diffusion<D, ViscosityModel::artificial, T>(prm, ps, grid, cols, extra, br);
 }
 
 }  // namespace
@@ -227,18 +280,15 @@ ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const Vec<D>* extra_acc, bool buffer_reaction) {
   ps.acc.resize(ps.size());
   ps.drho.resize(ps.size());
-  if (prm.viscosity.model == ViscosityModel::laminar) {
-    return dispatch_diffusion<D, ViscosityModel::laminar>(prm, ps, grid, cols, extra_acc,
-                                                          buffer_reaction);
-  }
-  return dispatch_diffusion<D, ViscosityModel::artificial>(prm, ps, grid, cols, extra_acc,
-                                                           buffer_reaction);
+  if (prm.precision == Precision::mixed)
+    return dispatch_viscosity<D, float>(prm, ps, grid, cols, extra_acc, buffer_reaction);
+  return dispatch_viscosity<D, double>(prm, ps, grid, cols, extra_acc, buffer_reaction);
 }
 
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
                           ForceWorkspace<D>& ws, const Vec<D>* extra_acc, bool buffer_reaction) {
-  ws.pack(ps, prm.eos);
+  ws.pack(ps, prm.eos, prm.precision);
   return compute_forces_packed(prm, ps, grid, ws, extra_acc, buffer_reaction);
 }
 

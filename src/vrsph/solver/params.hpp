@@ -3,6 +3,7 @@
 #pragma once
 
 #include "vrsph/core/kernel.hpp"
+#include "vrsph/core/precision.hpp"
 #include "vrsph/core/vec.hpp"
 #include "vrsph/physics/density_diffusion.hpp"
 #include "vrsph/physics/eos.hpp"
@@ -25,6 +26,7 @@ struct SolverParams {
   Vec<D> up{};  // unit vector against gravity (zero without gravity)
 
   double cfl = 0.2;
+  Precision precision = Precision::double_precision;  // of the force pass
   double sigma = 0.0;  // surface tension coefficient (fluid.surface_tension, N/m)
 
   // The models of [numerics], each its case struct whole plus its numbers for this level.

@@ -1,0 +1,14 @@
+// Arithmetic precision of the neighbour passes (case key numerics.precision).
+//  - double: every value and every pair term in double.
+//  - mixed: positions, the integrated state (x, v, rho) and every per-particle sum stay double;
+//    the force pass's candidate blocks hold float copies (positions relative to the block's
+//    origin, density as rho - rho0) and its pair terms are formed and summed per lane in float,
+//    which doubles the pairs per vector instruction and halves the bytes a block copies.
+//    DualSPHysics' CPU code runs its whole pair loop in float, with double positions as an option.
+#pragma once
+
+namespace vrsph {
+
+enum class Precision { double_precision, mixed };
+
+}  // namespace vrsph
