@@ -8,8 +8,8 @@
 #include <random>
 #include <utility>
 
-#include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/core/vec.hpp"
+#include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/solver/params.hpp"
 
 namespace vrsph::force_cloud {

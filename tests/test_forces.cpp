@@ -260,9 +260,11 @@ struct State {
 };
 
 template <int D>
-State run_with_threads(int threads, int steps, std::size_t& n_particles, double& moved) {
+State run_with_threads(int threads, int steps, std::size_t& n_particles, double& moved,
+                       Precision precision = Precision::double_precision) {
   omp_set_num_threads(threads);
   CaseSpec spec = dam_break_spec<D>();
+  spec.numerics.precision = precision;
   Simulation<D> sim(spec);
   std::map<std::uint64_t, Vec<D>> start;
   for (std::size_t i = 0; i < sim.particles().size(); ++i) {
@@ -284,20 +286,31 @@ State run_with_threads(int threads, int steps, std::size_t& n_particles, double&
   return st;
 }
 
+template <int D>
+void expect_independent_of_threads(Precision precision);
+
+// In both precisions (the mixed one sums its float lanes in the same fixed order).
 TYPED_TEST(ForcesTest, SimulationIndependentOfThreadCount) {
   constexpr int D = TypeParam::value;
+  for (Precision p : {Precision::double_precision, Precision::mixed}) {
+    expect_independent_of_threads<D>(p);
+  }
+}
+
+template <int D>
+void expect_independent_of_threads(Precision precision) {
   const int steps = D == 2 ? 20 : 5;
   const int saved = omp_get_max_threads();
   std::size_t n1 = 0, n = 0;
   double moved = 0.0, moved_n = 0.0;
-  const State one = run_with_threads<D>(1, steps, n1, moved);
+  const State one = run_with_threads<D>(1, steps, n1, moved, precision);
   std::printf("[ forces %dD ] thread check: %zu particles, %d steps, max displacement %.3g m\n", D,
               n1, steps, moved);
   EXPECT_GT(n1, 1500u);
   EXPECT_LT(n1, 4000u);
   EXPECT_GT(moved, 0.0);
   for (int threads : {2}) {
-    const State many = run_with_threads<D>(threads, steps, n, moved_n);
+    const State many = run_with_threads<D>(threads, steps, n, moved_n, precision);
     ASSERT_EQ(n, n1);
     ASSERT_EQ(many.values.size(), one.values.size());
     std::size_t differ = 0;

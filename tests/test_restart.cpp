@@ -93,6 +93,26 @@ TEST(Restart, HaltedRunResumesToTheSameBytes2D) {
   EXPECT_TRUE(same_bytes(a / "case.toml", b / "case.toml"));
 }
 
+// The same in mixed precision (numerics.precision): the checkpoint holds the double state, and
+// the float copies of the force pass are made again from it.
+TEST(Restart, HaltedMixedPrecisionRunResumesToTheSameBytes) {
+  TempDir dir;
+  const fs::path a = dir / "a", b = dir / "b";
+  const std::vector<std::string> mixed = {"--set", "numerics.precision=\"mixed\""};
+  const CmdResult ra = dir.run(with(dam_break_20ms(a), mixed));
+  ASSERT_EQ(ra.status, 0) << ra;
+  const CmdResult halted =
+      dir.run(with(with(dam_break_20ms(b), mixed), {"--halt-after-output", "2"}));
+  ASSERT_EQ(halted.status, kExitHalted) << halted;
+  const CmdResult resumed = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1"});
+  ASSERT_EQ(resumed.status, 0) << resumed;
+  expect_same_outputs(a, b, 4, true);
+  // and it is not the double run
+  const fs::path c = dir / "c";
+  ASSERT_EQ(dir.run(dam_break_20ms(c)).status, 0);
+  EXPECT_FALSE(same_bytes(a / snapshot(4, "csv"), c / snapshot(4, "csv")));
+}
+
 TEST(Restart, HaltedTwiceResumesToTheSameBytes) {
   // Halt after snapshot 1, resume and halt again after snapshot 3, resume to the end.
   TempDir dir;

@@ -100,8 +100,10 @@ ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
   if (spec.numerics.hydrostatic_initial_density && g > 0.0) {
     apply_hydrostatic_density<D>(all, prm.gravity, spec.fluid.density, lay.dp, prm.eos);
   }
-  ParticleSet<D> ps;
+  // The level's particles are cut from the fill in place (ids and kinds set, the rest compacted
+  // away), so set-up never holds two copies of the particles.
   std::vector<IdRange> ranges(init.wall_block_first.size());
+  std::vector<std::uint8_t> keep(all.size(), 0);
   std::uint64_t id = first_id;
   for (std::size_t i = 0; i < all.size(); ++i) {
     Kind k = all.kind[i];
@@ -116,10 +118,13 @@ ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
       if (z == Zone::outside) continue;
       if (z == Zone::buffer) k = Kind::buffer;
     }
-    ps.push_back(id++, k, all.pos[i], all.vel[i], all.rho[i], all.mass[i]);
+    keep[i] = 1;
+    all.kind[i] = k;
+    all.id[i] = id++;
   }
+  all.compact(keep);
   if (wall_ids != nullptr) *wall_ids = std::move(ranges);
-  return ps;
+  return std::move(all);
 }
 
 template void default_domain<2>(const ParticleSet<2>&, const Vec<2>&, double, double, Vec<2>&,
