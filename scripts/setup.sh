@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every build, test, plot and format-check dependency of vrsph from Debian 12 packages.
+# Installs every build, test, plot, benchmark and format-check dependency of vrsph from Debian 12
+# packages.
 # Idempotent: packages already present are left alone, and apt is not touched at all
 # when nothing is missing. Run as root (or with sudo available).
 set -euo pipefail
@@ -8,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libtomlplusplus-dev libcli11-dev libfmt-dev nlohmann-json3-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev libeigen3-dev
-  gnuplot-nox
+  gnuplot-nox time
   clang-format
 )
 

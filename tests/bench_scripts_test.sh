@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The benchmark scripts on tiny runs. bench_peer.sh against a stand-in for DualSPHysics (a
+# script that writes the Run.csv a DualSPHysics run writes, with 85,415 particles, 100 steps in
+# 2 s: 4.27075 M particle-steps/s): the peer's speed must be read back exactly, the ratio be
+# vrsph's over it, and bad options refused. bench_scaling.sh at two spacings: one csv row each,
+# the first at relative cost 1.
+#   tests/bench_scripts_test.sh VRSPH_BINARY REPO_ROOT
+set -euo pipefail
+[ $# -eq 2 ] || { echo "usage: bench_scripts_test.sh VRSPH_BINARY REPO_ROOT" >&2; exit 2; }
+vrsph=$1; root=${2%/}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+mkdir -p "$tmp/cases"
+touch "$tmp/cases/Dam2D.xml" "$tmp/cases/Dam2D.bi4"
+cat > "$tmp/fake_ds" <<'SH'
+#!/bin/sh
+# arguments as DualSPHysics takes them: -cpu -ompthreads:N CASE OUTDIR options...
+out=$4
+mkdir -p "$out"
+printf '%s\n' '#RunName;Np;TSimul;MemCpu;Steps' 'Dam2D;85,415;2.0;18,917,174;100' > "$out/Run.csv"
+SH
+chmod +x "$tmp/fake_ds"
+
+log=$tmp/peer.log
+"$root/scripts/bench_peer.sh" --ds "$tmp/fake_ds" --ds-cases "$tmp/cases" --vrsph "$vrsph" \
+  --cases 2d --runs 1 --threads 1 --time 0.0002 --out "$tmp/peer" > "$log" 2>&1 ||
+  fail "bench_peer.sh exited $?: $(cat "$log")"
+line=$(grep '^2d (' "$log") || fail "no summary line: $(cat "$log")"
+[[ "$line" == *"DualSPHysics 4.271 M particle-steps/s"* ]] || fail "peer speed misread: $line"
+v=$(python3 -c "import json; print(json.load(open('$tmp/peer/2d-vrsph-1.json'))['particle_steps_per_second'])")
+want=$(awk -v v="$v" 'BEGIN { printf "ratio %.2f", v / 4270750 }')
+[[ "$line" == *"$want"* ]] || fail "ratio: want '$want' in: $line"
+
+if "$root/scripts/bench_peer.sh" --ds "$tmp/fake_ds" --ds-cases "$tmp/nowhere" --vrsph "$vrsph" \
+  --cases 2d --runs 1 > "$tmp/bad.log" 2>&1; then fail "missing peer cases accepted"; fi
+grep -q "Dam2D.xml and .bi4 missing" "$tmp/bad.log" || fail "bad message: $(cat "$tmp/bad.log")"
+if "$root/scripts/bench_peer.sh" --ds "$tmp/fake_ds" --ds-cases "$tmp/cases" --runs x \
+  > "$tmp/bad2.log" 2>&1; then fail "--runs x accepted"; fi
+grep -q "not a positive integer" "$tmp/bad2.log" || fail "bad message: $(cat "$tmp/bad2.log")"
+
+VRSPH=$vrsph "$root/scripts/bench_scaling.sh" "$root/cases/bench_dam_break_2d.toml" 0.0002 0.02 \
+  0.01 --threads 1 --out "$tmp/scaling" > "$tmp/scaling.log" 2>&1 ||
+  fail "bench_scaling.sh exited $?: $(cat "$tmp/scaling.log")"
+[ "$(wc -l < "$tmp/scaling/scaling.csv")" -eq 3 ] || fail "scaling.csv: $(cat "$tmp/scaling/scaling.csv")"
+awk -F, 'NR == 2 && $7 != "1.000" { exit 1 }' "$tmp/scaling/scaling.csv" || fail "first row not 1"
+echo "bench_scripts_test: ok ($line)"
