@@ -5,7 +5,7 @@
 # peak memory per particle (peak resident set from /usr/bin/time, and what each code reports).
 #
 #   scripts/bench_peer.sh --ds BIN --ds-cases DIR [--vrsph BIN] [--threads N] [--runs N]
-#                         [--cases 2d,3d] [--time T] [--out DIR]
+#                         [--cases 2d,3d] [--time T] [--set KEY=VALUE]... [--out DIR]
 #
 #   --ds BIN        a DualSPHysics 5.x CPU binary (not shipped with vrsph)
 #   --ds-cases DIR  GenCase outputs Dam2D.xml/.bi4 and Spheric3D.xml/.bi4, made from the
@@ -15,6 +15,7 @@
 #   --runs N        rounds, at least 3 for a claim (default 3)
 #   --cases LIST    which cases (default 2d,3d)
 #   --time T        physical time of every run (default: 0.05 s in 2D, 0.02 s in 3D)
+#   --set KEY=VALUE a case override for the vrsph runs (numerics.precision="mixed")
 #   --out DIR       working directory (default a fresh one under /tmp), kept for inspection
 #
 # Both codes run the same options: symplectic, Wendland, artificial viscosity, Fourtakas density
@@ -25,6 +26,7 @@ set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 ds="" ds_cases="" vrsph="$root/build/release/vrsph" threads=2 runs=3 which="2d,3d" time="" out=""
+sets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --ds) ds=$2; shift 2 ;;
@@ -35,7 +37,8 @@ while [ $# -gt 0 ]; do
     --cases) which=$2; shift 2 ;;
     --time) time=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
-    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
+    --set) sets+=(--set "$2"); shift 2 ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) echo "bench_peer.sh: unknown option '$1' (see --help)" >&2; exit 1 ;;
   esac
 done
@@ -57,7 +60,7 @@ median() { sort -g | awk '{a[NR]=$1} END {if (NR==0) {print "nan"; exit}
 run_vrsph() {
   local json="$out/$3.json"
   /usr/bin/time -f %M -o "$out/$3.mem" "$vrsph" bench "$1" --time "$2" --threads "$threads" \
-    --json "$json" > "$out/$3.log" 2>&1 || fail "vrsph failed on $1 (log: $out/$3.log)"
+    "${sets[@]}" --json "$json" > "$out/$3.log" 2>&1 || fail "vrsph failed on $1 (log: $out/$3.log)"
   python3 - "$json" "$(cat "$out/$3.mem")" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
@@ -105,7 +108,7 @@ compare() {
     printf "  peak resident per particle: vrsph %.0f B (it reports %.0f B over its set-up), DualSPHysics %.0f B\n", vm*1024/n, vb, pm*1024/n }'
 }
 
-echo "bench_peer.sh: vrsph $("$vrsph" --version 2>/dev/null | head -1), peer $ds, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), work in $out"
+echo "bench_peer.sh: vrsph $("$vrsph" --version 2>/dev/null | head -1) ${sets[*]:-}, peer $ds, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), work in $out"
 IFS=',' read -ra list <<< "$which"
 for c in "${list[@]}"; do
   case "$c" in
