@@ -107,8 +107,11 @@ void write_numerics(Writer& w, const CaseSpec& s) {
   const NumericsSpec& n = s.numerics;
   w.header("[numerics]");
   w.kv("cfl", num(n.cfl));
-  w.kv("precision", toml_quote(enum_name(kArithmeticNames, n.precision)),
-       "of the force pass: double | mixed");
+  // Written only when not the default, so that checkpoints made before the key existed (their
+  // physical keys lack it) still resume.
+  if (n.precision != Precision::double_precision)
+    w.kv("precision", toml_quote(enum_name(kArithmeticNames, n.precision)),
+         "of the force pass: double | mixed");
   w.kv("viscosity", viscosity_table(n.viscosity), "alpha: artificial only");
   w.kv("density_diffusion", density_diffusion_table(n.density_diffusion));
   w.kv("shifting", shifting_table(n.shifting));
