@@ -54,7 +54,7 @@ struct Neighbour {
 // Candidate j's columns, one load per column written out (a loop over k here could stay a loop
 // inside the vectorised one).
 template <int K, class T>
-[[gnu::always_inline]] inline Neighbour<K, T> load_neighbour(const T* const (&col)[12],
+[[gnu::always_inline]] inline Neighbour<K, T> load_neighbour(const T* const (&col)[16],
                                                              std::ptrdiff_t j) {
   Neighbour<K, T> nb;
   if constexpr (K > 0) nb.c[0] = col[0][j];
@@ -69,6 +69,10 @@ template <int K, class T>
   if constexpr (K > 9) nb.c[9] = col[9][j];
   if constexpr (K > 10) nb.c[10] = col[10][j];
   if constexpr (K > 11) nb.c[11] = col[11][j];
+  if constexpr (K > 12) nb.c[12] = col[12][j];
+  if constexpr (K > 13) nb.c[13] = col[13][j];
+  if constexpr (K > 14) nb.c[14] = col[14][j];
+  if constexpr (K > 15) nb.c[15] = col[15][j];
   return nb;
 }
 
@@ -105,17 +109,23 @@ inline constexpr int kSweepLanes = 8;
 // loop around a pass's lambda into scalar code on AVX2 (docs/validation.md, "Vectorisation of
 // the passes"). The body reads values (the neighbour's columns and what its closure captured by
 // value) and returns its terms by value.
-template <int D, int K, int NS, bool kMax, class T, class Body>
+// KL >= 0: columns KL..KL+D-1 hold the low parts of the positions (x = hi + lo, float blocks),
+// and xi_lo those of x_i; r_ij = (hi_i - hi_j) + (lo_i - lo_j).
+template <int D, int K, int NS, bool kMax, int KL = -1, class T, class Body>
 [[gnu::always_inline]] inline void sweep_pairs(const WendlandC2<D>& kernel_in, const T xi_in[3],
                                                const std::array<std::vector<T>, K>& cols,
                                                std::ptrdiff_t len, Body body, double (&sum)[12],
-                                               double& vmax) {
-  static_assert(K <= 12 && NS <= 12, "sweep_pairs reads at most 12 columns into 12 sums");
+                                               double& vmax, const T* xi_lo_in = nullptr) {
+  static_assert(K <= 16 && NS <= 12, "sweep_pairs reads at most 16 columns into 12 sums");
   if (len == 0) return;  // an empty block (most fluid particles' wall block) costs no set-up
   constexpr int L = kSweepLanes;
   const WendlandC2<D> kernel = kernel_in;  // local copies: nothing in the loop can alias them
   const T xi[3] = {xi_in[0], xi_in[1], D == 3 ? xi_in[D - 1] : T(0)};
-  const T* col[12] = {};
+  T xl[3] = {T(0), T(0), T(0)};
+  if constexpr (KL >= 0) {
+    for (int k = 0; k < D; ++k) xl[k] = xi_lo_in[k];
+  }
+  const T* col[16] = {};
   for (int k = 0; k < K; ++k) col[k] = cols[k].data();
   const T support2 = T(kernel.support2);
   T acc[NS > 0 ? NS : 1][L] = {};
@@ -129,6 +139,11 @@ template <int D, int K, int NS, bool kMax, class T, class Body>
       g.rx = xi[0] - nb.c[0];
       g.ry = xi[1] - nb.c[1];
       g.rz = D == 3 ? xi[2] - nb.c[D - 1] : T(0);
+      if constexpr (KL >= 0) {
+        g.rx += xl[0] - nb.c[KL];
+        g.ry += xl[1] - nb.c[KL + 1];
+        if constexpr (D == 3) g.rz += xl[2] - nb.c[KL + D - 1];
+      }
       g.r2 = g.rx * g.rx + g.ry * g.ry + g.rz * g.rz;
       const bool in = (g.r2 < support2) & (g.r2 > T(0));  // `&`: both tests without a branch
       g.in = in ? T(1) : T(0);

@@ -6,8 +6,10 @@
 // Columns 0..D-1 hold the positions; the rest are whatever the pass reads (velocity, density,
 // volume, lambda, normal, ...), each with the value its dummies take.
 // The columns hold the pass's arithmetic type T. With T = float (mixed precision) the positions
-// are stored relative to the block's origin, one of its candidates: |x_j - origin| spans a few
-// cells, so float keeps r_ij to about 1e-7 h wherever the particles are in the domain.
+// are stored relative to the block's origin, one of its candidates, each as two floats: the
+// last D columns hold the low parts, x - origin = hi + lo, so that r_ij = (hi_i - hi_j) +
+// (lo_i - lo_j) keeps the accuracy of a double difference until its final rounding (float hi
+// alone left errors of about 6e-7 r, which biased the pressure sums: docs/validation.md).
 #pragma once
 
 #include <algorithm>
@@ -79,9 +81,16 @@ struct CandidateBlock {
       std::fill(col[k].begin() + at, col[k].begin() + len, static_cast<T>(pad[k]));
   }
 
-  // x_i in the block's frame.
-  void frame(const double x[3], T out[3]) const {
-    for (int k = 0; k < 3; ++k) out[k] = static_cast<T>(x[k] - origin[k]);
+  // x_i in the block's frame, as hi + lo (lo = 0 for T = double).
+  void frame(const double x[3], T hi[3], T lo[3]) const {
+    for (int k = 0; k < 3; ++k) {
+      const double rel = x[k] - origin[k];
+      // Through memory: GCC 12 (-O3) otherwise took double(float(rel)) for rel here, which
+      // made lo 0 and put x_i off its own entry in the block.
+      volatile T h = static_cast<T>(rel);
+      hi[k] = h;
+      lo[k] = static_cast<T>(rel - static_cast<double>(hi[k]));
+    }
   }
 
  private:
@@ -104,9 +113,15 @@ struct CandidateBlock {
           const double o = origin[k];
           const double* from = src[k] + b;
           const std::size_t len = whole ? chunks * P : e - b;
-          for (std::size_t q = 0; q < len; ++q) to[q] = static_cast<T>(from[q] - o);
+          T* lo = col[K - D + k].data() + at;
+          for (std::size_t q = 0; q < len; ++q) {
+            const double rel = from[q] - o;
+            to[q] = static_cast<T>(rel);
+            lo[q] = static_cast<T>(rel - static_cast<double>(to[q]));
+          }
           continue;
         }
+        if (k >= K - D) continue;  // the low parts, written with the positions
       }
       const T* from = nullptr;
       if constexpr (kRelative)

@@ -20,14 +20,17 @@ struct ForceCol {
   static constexpr int v = D, rho = 2 * D, p = rho + 1, vol = rho + 2, mass = rho + 3,
                        wall_vol = rho + 4, count = rho + 5;
 };
+// Float blocks add the low parts of the positions as their last D columns (candidate_block.hpp).
 template <int D, class T>
-using ForceBlock = CandidateBlock<ForceCol<D>::count, T>;
+inline constexpr int kForceCols = ForceCol<D>::count + (std::is_same_v<T, float> ? D : 0);
+template <int D, class T>
+using ForceBlock = CandidateBlock<kForceCols<D, T>, T>;
 static_assert(kBlockPad % kSweepLanes == 0, "blocks must fill whole sweep lanes");
 
 // In mixed precision only the positions are read from here (the rest: force_float_sources).
-template <int D>
-std::array<const double*, ForceCol<D>::count> force_sources(const LevelColumns<D>& c) {
-  std::array<const double*, ForceCol<D>::count> s{};
+template <int D, class T>
+std::array<const double*, kForceCols<D, T>> force_sources(const LevelColumns<D>& c) {
+  std::array<const double*, kForceCols<D, T>> s{};
   for (int k = 0; k < D; ++k) {
     s[k] = c.x[k].data();
     s[ForceCol<D>::v + k] = c.v[k].data();
@@ -42,8 +45,8 @@ std::array<const double*, ForceCol<D>::count> force_sources(const LevelColumns<D
 
 // The float sources of the non-position columns (mixed precision); positions stay double.
 template <int D>
-std::array<const float*, ForceCol<D>::count> force_float_sources(const LevelColumns<D>& c) {
-  std::array<const float*, ForceCol<D>::count> s{};
+std::array<const float*, kForceCols<D, float>> force_float_sources(const LevelColumns<D>& c) {
+  std::array<const float*, kForceCols<D, float>> s{};
   for (int k = 0; k < D; ++k) s[ForceCol<D>::v + k] = c.f.v[k].data();
   s[ForceCol<D>::rho] = c.f.rho_dev.data();
   s[ForceCol<D>::p] = c.f.p.data();
@@ -59,15 +62,15 @@ auto block_rest(const LevelColumns<D>& c) {
   if constexpr (std::is_same_v<T, float>) {
     return force_float_sources(c);
   } else {
-    return std::array<const double*, ForceCol<D>::count>{};
+    return std::array<const double*, kForceCols<D, T>>{};
   }
 }
 
 // Dummies: far away, at rest, density rho0 (deviation 0: no division by zero), no volume, mass
 // or pressure.
-template <int D>
-std::array<double, ForceCol<D>::count> force_pad() {
-  return position_pad<ForceCol<D>::count, D>(0.0);
+template <int D, class T>
+std::array<double, kForceCols<D, T>> force_pad() {
+  return position_pad<kForceCols<D, T>, D>(0.0);  // low parts of the positions: 0
 }
 
 // What one particle i reads of itself: its position in double (each block has its own frame),
@@ -116,7 +119,7 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const For
   const T inv_gamma = static_cast<T>(prm.density_diffusion.inv_gamma);
   const T up0 = static_cast<T>(prm.up[0]), up1 = static_cast<T>(prm.up[1]);
   const T up2 = static_cast<T>(prm.up[D - 1]);
-  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<C::count, T>& nb) {
+  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<kForceCols<D, T>, T>& nb) {
     const T rho_dev_j = nb[C::rho], rho_j = rho0 + rho_dev_j, vol_j = nb[C::vol];
     const T m_j = nb[C::mass], rho_i_minus_j = rho_dev_i - rho_dev_j;
     const T ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
@@ -154,10 +157,11 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const For
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
-  T xi[3];
-  blk.frame(me.x, xi);
-  sweep_pairs<D, C::count, 2 + D, true>(
-      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, out.s, out.max_visc_dt);
+  T xi[3], xi_lo[3];
+  blk.frame(me.x, xi, xi_lo);
+  constexpr int KF = kForceCols<D, T>, KL = std::is_same_v<T, float> ? C::count : -1;
+  sweep_pairs<D, KF, 2 + D, true, KL>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+                                      pair, out.s, out.max_visc_dt, xi_lo);
 }
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
@@ -167,7 +171,7 @@ inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const Forc
   using C = ForceCol<D>;
   const T rho_i = static_cast<T>(prm.eos.rho0) + me.rho_dev, eta2 = static_cast<T>(prm.eta2);
   const T vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
-  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<C::count, T>& nb) {
+  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<kForceCols<D, T>, T>& nb) {
     const T ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
     const T uz = D == 3 ? vi2 - nb[C::v + D - 1] : T(0);
     const T vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
@@ -178,10 +182,11 @@ inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const Forc
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
-  T xi[3];
-  blk.frame(me.x, xi);
-  sweep_pairs<D, C::count, 2, true>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
-                                    pair, out.s, out.max_visc_dt);
+  T xi[3], xi_lo[3];
+  blk.frame(me.x, xi, xi_lo);
+  constexpr int KF = kForceCols<D, T>, KL = std::is_same_v<T, float> ? C::count : -1;
+  sweep_pairs<D, KF, 2, true, KL>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
+                                  pair, out.s, out.max_visc_dt, xi_lo);
 }
 
 // Per-thread scratch of the force pass and its statistics (ForceStats::merge across threads).
@@ -210,8 +215,8 @@ template <int D, ViscosityModel VM, DiffusionModel DM, class T>
 ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
                       const LevelColumns<D>& cols, const Vec<D>* extra_acc, bool buffer_reaction) {
   const auto& cells = grid.particle_cells();
-  const auto src = force_sources(cols);
-  const auto pad = force_pad<D>();
+  const auto src = force_sources<D, T>(cols);
+  const auto pad = force_pad<D, T>();
   const auto rest = block_rest<T>(cols);
   const auto* rest_ptr = std::is_same_v<T, float> ? &rest : nullptr;
   auto body = [&](std::int64_t ii, ForceScratch<D, T>& scratch, ForceAcc& acc) {
