@@ -2,7 +2,8 @@
 //  - double: every value and every pair term in double.
 //  - mixed: positions, the integrated state (x, v, rho) and every per-particle sum stay double;
 //    the force pass's candidate blocks hold float copies (positions relative to the block's
-//    origin, density as rho - rho0) and its pair terms are formed and summed per lane in float,
+//    origin as two floats hi + lo, so that r_ij keeps double accuracy until its last rounding;
+//    density as rho - rho0) and its pair terms are formed and summed per lane in float,
 //    which doubles the pairs per vector instruction and halves the bytes a block copies.
 //    DualSPHysics' CPU code runs its whole pair loop in float, with double positions as an option.
 #pragma once
