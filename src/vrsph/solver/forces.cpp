@@ -27,43 +27,41 @@ template <int D, class T>
 using ForceBlock = CandidateBlock<kForceCols<D, T>, T>;
 static_assert(kBlockPad % kSweepLanes == 0, "blocks must fill whole sweep lanes");
 
-// In mixed precision only the positions are read from here (the rest: force_float_sources).
-template <int D, class T>
-std::array<const double*, kForceCols<D, T>> force_sources(const LevelColumns<D>& c) {
-  std::array<const double*, kForceCols<D, T>> s{};
-  for (int k = 0; k < D; ++k) {
-    s[k] = c.x[k].data();
-    s[ForceCol<D>::v + k] = c.v[k].data();
-  }
-  s[ForceCol<D>::rho] = c.rho_dev.data();
-  s[ForceCol<D>::p] = c.p.data();
-  s[ForceCol<D>::vol] = c.vol.data();
-  s[ForceCol<D>::mass] = c.mass.data();
-  s[ForceCol<D>::wall_vol] = c.wall_vol.data();
-  return s;
-}
-
-// The float sources of the non-position columns (mixed precision); positions stay double.
-template <int D>
-std::array<const float*, kForceCols<D, float>> force_float_sources(const LevelColumns<D>& c) {
-  std::array<const float*, kForceCols<D, float>> s{};
-  for (int k = 0; k < D; ++k) s[ForceCol<D>::v + k] = c.f.v[k].data();
-  s[ForceCol<D>::rho] = c.f.rho_dev.data();
-  s[ForceCol<D>::p] = c.f.p.data();
-  s[ForceCol<D>::vol] = c.f.vol.data();
-  s[ForceCol<D>::mass] = c.f.mass.data();
-  s[ForceCol<D>::wall_vol] = c.f.wall_vol.data();
-  return s;
-}
-
-// The sources of a block of type T: none beyond `force_sources` for double.
+// The non-position columns a block of type T copies: LevelColumns' own in double, its float
+// copies (LevelColumns::f) in mixed precision. One list for the sources and for Self.
 template <class T, int D>
-auto block_rest(const LevelColumns<D>& c) {
-  if constexpr (std::is_same_v<T, float>) {
-    return force_float_sources(c);
-  } else {
-    return std::array<const double*, kForceCols<D, T>>{};
+struct StateView {
+  std::array<const T*, D> v{};
+  const T *rho_dev = nullptr, *p = nullptr, *vol = nullptr, *mass = nullptr, *wall_vol = nullptr;
+};
+template <class T, int D>
+StateView<T, D> state_view(const LevelColumns<D>& c) {
+  const auto& s = [&]() -> const auto& {
+    if constexpr (std::is_same_v<T, float>)
+      return c.f;
+    else
+      return c;
   }
+  ();
+  StateView<T, D> w;
+  for (int k = 0; k < D; ++k) w.v[k] = s.v[k].data();
+  w.rho_dev = s.rho_dev.data(), w.p = s.p.data(), w.vol = s.vol.data(), w.mass = s.mass.data();
+  w.wall_vol = s.wall_vol.data();
+  return w;
+}
+
+// Block sources: the positions (double) into `pos`, the state columns of type T into `state`
+// (for double both are the same array).
+template <int D, class T, class P, class S>
+void fill_sources(const LevelColumns<D>& c, P& pos, S& state) {
+  using C = ForceCol<D>;
+  const StateView<T, D> w = state_view<T>(c);
+  for (int k = 0; k < D; ++k) {
+    pos[k] = c.x[k].data();
+    state[C::v + k] = w.v[k];
+  }
+  state[C::rho] = w.rho_dev, state[C::p] = w.p, state[C::vol] = w.vol, state[C::mass] = w.mass;
+  state[C::wall_vol] = w.wall_vol;
 }
 
 // Dummies: far away, at rest, density rho0 (deviation 0: no division by zero), no volume, mass
@@ -82,14 +80,9 @@ struct Self {
   T rho_dev = 0, p = 0;
   template <int D>
   Self(const LevelColumns<D>& c, std::uint32_t i) {
-    for (int k = 0; k < D; ++k) x[k] = c.x[k][i];
-    if constexpr (std::is_same_v<T, float>) {
-      for (int k = 0; k < D; ++k) v[k] = c.f.v[k][i];
-      rho_dev = c.f.rho_dev[i], p = c.f.p[i];
-    } else {
-      for (int k = 0; k < D; ++k) v[k] = c.v[k][i];
-      rho_dev = c.rho_dev[i], p = c.p[i];
-    }
+    const StateView<T, D> w = state_view<T>(c);
+    for (int k = 0; k < D; ++k) x[k] = c.x[k][i], v[k] = w.v[k][i];
+    rho_dev = w.rho_dev[i], p = w.p[i];
   }
 };
 
@@ -215,9 +208,14 @@ template <int D, ViscosityModel VM, DiffusionModel DM, class T>
 ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
                       const LevelColumns<D>& cols, const Vec<D>* extra_acc, bool buffer_reaction) {
   const auto& cells = grid.particle_cells();
-  const auto src = force_sources<D, T>(cols);
+  constexpr int KF = kForceCols<D, T>;
+  std::array<const double*, KF> src{};
+  std::array<const T*, KF> rest{};
+  if constexpr (std::is_same_v<T, float>)
+    fill_sources<D, T>(cols, src, rest);
+  else
+    fill_sources<D, T>(cols, src, src);
   const auto pad = force_pad<D, T>();
-  const auto rest = block_rest<T>(cols);
   const auto* rest_ptr = std::is_same_v<T, float> ? &rest : nullptr;
   auto body = [&](std::int64_t ii, ForceScratch<D, T>& scratch, ForceAcc& acc) {
     const auto i = static_cast<std::uint32_t>(ii);
