@@ -47,6 +47,10 @@ TEST(CaseParser, ImpossibleValues) {
   expect_contains(error_of(edited("end_time = 0.2", "end_time = 0")), {"case.end_time", "> 0"});
   expect_contains(error_of(edited("dimension = 2", "dimension = 4")), {"case.dimension", "2 or 3"});
   expect_contains(error_of(m + "[numerics]\ncfl = 1.5\n"), {"numerics.cfl = 1.5", "(0, 1]"});
+  expect_contains(error_of(m + "[numerics]\nsurface_tension = { refresh = \"sometimes\" }\n"),
+                  {"numerics.surface_tension.refresh", "sometimes", "every_step", "capillary"});
+  expect_contains(error_of(m + "[numerics]\nsurface_tension = { refresh_interval = 0 }\n"),
+                  {"numerics.surface_tension.refresh_interval = 0", "(0, 8]"});
   expect_contains(error_of(m + "[fluid]\ndensity = -3\n"), {"fluid.density", "> 0"});
   expect_contains(error_of(m + "[fluid]\nkinematic_viscosity = -1e-6\n"),
                   {"fluid.kinematic_viscosity", ">= 0"});

@@ -188,6 +188,27 @@ TYPED_TEST(CellGridTest, SortPermutesConsistentlyAndDropsOutside) {
   }
 }
 
+// An array kept beside the particles (the held surface fields) follows them through carry();
+// one of another length is left alone.
+TYPED_TEST(CellGridTest, CarriedArrayFollowsItsParticles) {
+  constexpr int D = TypeParam::value / 10, cps = TypeParam::value % 10;
+  Cloud<D> cl = cloud_for_test<D>(4);
+  std::vector<double> ids(cl.ps.size()), other(3, 7.0);
+  std::vector<Vec<D>> xs = cl.ps.pos;
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<double>(cl.ps.id[i]);
+  CellGrid<D> grid(cl.lo, cl.hi, cl.support, cps);
+  grid.sort(cl.ps);
+  grid.carry(ids);
+  grid.carry(xs);
+  grid.carry(other);
+  ASSERT_EQ(ids.size(), cl.ps.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    EXPECT_EQ(ids[i], static_cast<double>(cl.ps.id[i]));
+    EXPECT_EQ(norm2(xs[i] - cl.ps.pos[i]), 0.0);
+  }
+  EXPECT_EQ(other, std::vector<double>(3, 7.0));
+}
+
 TYPED_TEST(CellGridTest, NeighbourRunsMatchBruteForce) {
   constexpr int D = TypeParam::value / 10, cps = TypeParam::value % 10;
   for (std::uint64_t seed : {4u, 5u}) {

@@ -41,6 +41,44 @@ void check_case(const Checkpoint& ck, const CaseSpec& spec, const std::filesyste
       path.string(), changes.empty() ? "its hash does not match" : changes));
 }
 
+namespace {
+
+// The capillary refresh's held acceleration ("levelN.acc_st", D values per particle) and the
+// time of the last refresh: without them a resumed run would refresh at once where the
+// uninterrupted run did not.
+template <int D>
+void put_held_fields(Checkpoint& ck, const Simulation<D>& sim) {
+  ck.put_value("surface.refresh_time", sim.refresh_clock().last());
+  for (std::size_t l = 0; l < sim.level_count(); ++l) {
+    const auto& a = sim.level(l).sf.acc_st;
+    std::vector<double> flat;
+    flat.reserve(a.size() * D);
+    for (const Vec<D>& v : a)
+      for (int k = 0; k < D; ++k) flat.push_back(v[k]);
+    ck.put(fmt::format("level{}.acc_st", l), std::move(flat));
+  }
+}
+
+// A checkpoint without them (written with refresh = "every_step" before) refreshes at once.
+template <int D>
+void get_held_fields(const Checkpoint& ck, Simulation<D>& sim) {
+  if (!ck.has("surface.refresh_time")) return;
+  for (std::size_t l = 0; l < sim.level_count(); ++l) {
+    auto& L = sim.level(l);
+    const auto& flat = ck.f64(fmt::format("level{}.acc_st", l));
+    if (flat.empty()) continue;  // no refresh yet
+    if (flat.size() != L.ps.size() * D)
+      throw CheckpointError(
+          fmt::format("level{}.acc_st: {} values for {} particles", l, flat.size(), L.ps.size()));
+    L.sf.acc_st.assign(L.ps.size(), Vec<D>{});
+    for (std::size_t i = 0; i < L.ps.size(); ++i)
+      for (int k = 0; k < D; ++k) L.sf.acc_st[i][k] = flat[i * D + k];
+  }
+  sim.restore_refresh(ck.value<double>("surface.refresh_time"));
+}
+
+}  // namespace
+
 template <int D>
 Checkpoint make_checkpoint(const Simulation<D>& sim, std::int64_t output_index) {
   const std::size_t nl = sim.level_count();
@@ -55,6 +93,7 @@ Checkpoint make_checkpoint(const Simulation<D>& sim, std::int64_t output_index) 
   s.counters = sim.counters();
   Checkpoint ck;
   put_run_state(ck, s);
+  if (sim.holds_surface_fields()) put_held_fields(ck, sim);
   for (std::size_t l = 0; l < nl; ++l) {
     ck.put_particles<D>(static_cast<int>(l), sim.level(l).ps);
     if (nl > 1) {
@@ -87,6 +126,7 @@ RunState restore_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
     }
   }
   sim.restore(s.time, s.step, s.dt_next, s.counters, s.initial_fluid);
+  if (sim.holds_surface_fields()) get_held_fields(ck, sim);  // before the sort, which carries them
   sim.resort();
   return s;
 }

@@ -129,6 +129,7 @@ std::size_t CellGrid<D>::key(std::int64_t cell, Kind k) const {
 template <int D>
 std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
+  sorted_count_ = n;
   std::vector<std::uint64_t> lost;
   pcell_.resize(n);
   fit_to(ps);
@@ -166,7 +167,21 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   return lost;
 }
 
+template <int D>
+template <class T>
+void CellGrid<D>::carry(std::vector<T>& a) {
+  if (a.size() != sorted_count_) return;
+  auto& spare = spare_for(a);
+  spare.resize(perm_.size());
+  permute_into(a, perm_, spare);
+  a.swap(spare);
+}
+
 template class CellGrid<2>;
 template class CellGrid<3>;
+template void CellGrid<2>::carry(std::vector<double>&);
+template void CellGrid<2>::carry(std::vector<Vec<2>>&);
+template void CellGrid<3>::carry(std::vector<double>&);
+template void CellGrid<3>::carry(std::vector<Vec<3>>&);
 
 }  // namespace vrsph

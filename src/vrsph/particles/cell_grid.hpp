@@ -51,6 +51,11 @@ class CellGrid {
   // Sorts all particle arrays by cell (stable), after deleting particles outside the domain.
   // Returns the ids of the deleted particles.
   std::vector<std::uint64_t> sort(ParticleSet<D>& ps);
+  // Reorders an array kept beside the particle arrays as the last sort reordered them (a per-
+  // particle field that is not in the field list). An array not sized to the particles sorted
+  // last is left alone. Instantiated for double and Vec<D>.
+  template <class T>
+  void carry(std::vector<T>& a);
 
   // Calls fn(begin, end) for each contiguous run of particles of group g in the stencil around
   // cell c (c from particle_cells(), i.e. without the group offset).
@@ -130,6 +135,7 @@ class CellGrid {
   std::vector<std::uint32_t> begin_;  // begin_[k]..begin_[k+1]: particles of key k = c + g*ncells
   std::vector<std::int64_t> pcell_;
   std::vector<std::uint32_t> perm_;
+  std::size_t sorted_count_ = 0;  // particles before the last sort (what carry() accepts)
   std::vector<std::uint32_t> dropped_;
   KeySort keysort_;
   std::vector<std::int64_t> cell_scratch_;

@@ -15,11 +15,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "vrsph/core/mat.hpp"
 #include "vrsph/core/vec.hpp"
 
 namespace vrsph {
+
+enum class SurfaceRefresh : std::uint8_t { every_step, capillary };
 
 // numerics.surface_tension, as the case gives it (sigma itself is fluid.surface_tension).
 struct SurfaceTensionParams {
@@ -28,6 +31,11 @@ struct SurfaceTensionParams {
   bool surface_offset = false;    // step 3: curvature_at_surface() in the force (not Cen)
   bool curvature_correction = false;  // step 3: corrected_curvature() (not Cen)
   bool zero_net_force = false;        // remove the net capillary force (closed surfaces; not Cen)
+  // How often passes 2 and 3 (normals, curvature, the capillary acceleration) run (not Cen):
+  // every force evaluation, or once per refresh_interval x the capillary time-step limit
+  // (solver/timestep.hpp), the acceleration held in between (sim/surface_refresh.hpp).
+  SurfaceRefresh refresh = SurfaceRefresh::every_step;
+  double refresh_interval = 1.0;  // in capillary dt limits; "capillary" only
 
   bool operator==(const SurfaceTensionParams&) const = default;
 };

@@ -45,6 +45,8 @@ inline constexpr Check kUnitClosed{[](double v) { return v >= 0.0 && v <= 1.0; }
                                    "must be in [0, 1]"};
 inline constexpr Check kBelowHalf{[](double v) { return v >= 0.0 && v < 0.5; },
                                   "must be in [0, 0.5) (0.5 is the fill on a free surface)"};
+inline constexpr Check kRefreshInterval{[](double v) { return v > 0.0 && v <= 8.0; },
+                                        "must be in (0, 8] (capillary time-step limits)"};
 inline constexpr Check kUnitHalfOpen{[](double v) { return v > 0.0 && v <= 1.0; },
                                      "must be in (0, 1]"};
 
@@ -84,6 +86,8 @@ inline constexpr EnumName<OutputPrecision> kPrecisionNames[] = {
     {"double", OutputPrecision::float64}, {"float32", OutputPrecision::float32}};
 inline constexpr EnumName<Precision> kArithmeticNames[] = {{"double", Precision::double_precision},
                                                            {"mixed", Precision::mixed}};
+inline constexpr EnumName<SurfaceRefresh> kRefreshNames[] = {
+    {"every_step", SurfaceRefresh::every_step}, {"capillary", SurfaceRefresh::capillary}};
 inline constexpr EnumName<OutputCompression> kCompressionNames[] = {
     {"none", OutputCompression::none}, {"zlib", OutputCompression::zlib}};
 

@@ -34,9 +34,9 @@ inline constexpr std::string_view kNumericsKeys[] = {"cfl",
 inline constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 inline constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};
 inline constexpr std::string_view kShiftingKeys[] = {"model", "coefficient", "surface_threshold"};
-inline constexpr std::string_view kSurfaceTensionKeys[] = {"lambda_threshold", "normal_epsilon",
-                                                           "surface_offset", "curvature_correction",
-                                                           "zero_net_force"};
+inline constexpr std::string_view kSurfaceTensionKeys[] = {
+    "lambda_threshold", "normal_epsilon", "surface_offset",  "curvature_correction",
+    "zero_net_force",   "refresh",        "refresh_interval"};
 inline constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radius",   "min",
                                                        "max",   "fill",   "velocity", "pressure"};
 inline constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers", "thin"};

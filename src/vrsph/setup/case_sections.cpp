@@ -148,6 +148,9 @@ void read_surface_tension(const TableReader& n, SurfaceTensionParams& p) {
   p.surface_offset = r.opt_bool("surface_offset").value_or(p.surface_offset);
   p.curvature_correction = r.opt_bool("curvature_correction").value_or(p.curvature_correction);
   p.zero_net_force = r.opt_bool("zero_net_force").value_or(p.zero_net_force);
+  p.refresh = r.opt_enum("refresh", kRefreshNames).value_or(p.refresh);
+  p.refresh_interval =
+      r.opt_number("refresh_interval", kRefreshInterval).value_or(p.refresh_interval);
 }
 
 // [numerics]: cfl, precision, the model tables, the coupling's two keys and the initial density.

@@ -94,12 +94,19 @@ std::string shifting_table(const ShiftingParams& p) {
                      num(p.surface_threshold));
 }
 
+// The refresh keys are written only when not the default, so that checkpoints made before they
+// existed (their physical keys lack them) still resume.
 std::string surface_tension_table(const SurfaceTensionParams& p) {
+  const std::string refresh =
+      p.refresh == SurfaceRefresh::every_step
+          ? std::string()
+          : fmt::format(", refresh = {}, refresh_interval = {}",
+                        toml_quote(enum_name(kRefreshNames, p.refresh)), num(p.refresh_interval));
   return fmt::format(
       "{{ lambda_threshold = {}, normal_epsilon = {}, surface_offset = {}, "
-      "curvature_correction = {}, zero_net_force = {} }}",
+      "curvature_correction = {}, zero_net_force = {}{} }}",
       num(p.lambda_threshold), num(p.normal_epsilon), toml_bool(p.surface_offset),
-      toml_bool(p.curvature_correction), toml_bool(p.zero_net_force));
+      toml_bool(p.curvature_correction), toml_bool(p.zero_net_force), refresh);
 }
 
 // [numerics] with its inline model tables.

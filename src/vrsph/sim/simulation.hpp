@@ -14,6 +14,7 @@
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/setup/case_spec.hpp"
+#include "vrsph/sim/surface_refresh.hpp"
 #include "vrsph/solver/forces.hpp"
 #include "vrsph/solver/level.hpp"
 #include "vrsph/solver/params.hpp"
@@ -53,6 +54,7 @@ struct PassTimes {
   double update = 0.0;
   double checks = 0.0;
   double coupling = 0.0;  // variable resolution: mass points, kinds, buffer interpolation
+  std::uint64_t capillary_passes = 0;  // force evaluations that ran surface passes 2 and 3
 };
 
 // The length of the next step, and whether it ends exactly at the stop time.
@@ -124,8 +126,17 @@ class Simulation {
 
   // Recomputes lambda, normals, curvature, ... of every level for the current state (outputs);
   // surface_fields(k) then reads level k.
+  // With the capillary refresh the held fields stay as they are: the outputs' fields are
+  // computed apart.
   void update_surface_fields();
-  const SurfaceFields<D>& surface_fields(std::size_t k = 0) const { return levels_[k].sf; }
+  const SurfaceFields<D>& surface_fields(std::size_t k = 0) const {
+    return holds_surface_fields() ? output_sf_[k] : levels_[k].sf;
+  }
+  // Capillary refresh (sim/surface_refresh.hpp): the capillary acceleration is held between
+  // refreshes; checkpoints keep it and the time of the last refresh.
+  bool holds_surface_fields() const { return !refresh_.every_step(); }
+  const RefreshClock& refresh_clock() const { return refresh_; }
+  void restore_refresh(double last) { refresh_.restore(last); }
   bool has_surface_fields() const {
     return params().sigma > 0.0 || params().shifting.model != ShiftingModel::none;
   }
@@ -135,8 +146,9 @@ class Simulation {
   void sort_all();
   void check_state(const Level<D>& L) const;
   void check_dt() const;
-  ForceStats evaluate_forces();
-  void surface_fields_all();
+  ForceStats evaluate_forces(double t_eval, bool corrector_stage);
+  void surface_fields_all(double t_eval, bool corrector_stage);
+  void surface_passes(bool capillary);
   DtChoice next_dt(const ForceStats& s) const;
   void couple_levels(double dt);
   StepPlan plan_step() const;
@@ -155,6 +167,8 @@ class Simulation {
   std::size_t initial_fluid_ = 0;
   RunCounters counters_;
   PassTimes times_;
+  RefreshClock refresh_;
+  std::vector<SurfaceFields<D>> output_sf_;  // held fields only: what outputs read
 };
 
 }  // namespace vrsph

@@ -17,9 +17,38 @@ void SurfaceFields<D>::resize(std::size_t n) {
   grad_c.assign(n, Vec<D>{});
   div_r.assign(n, 0.0);
   shepard.assign(n, 0.0);
-  normal.assign(n, Vec<D>{});
-  curvature.assign(n, 0.0);
-  acc_st.assign(n, Vec<D>{});
+  normal.resize(n);  // sized only: held values stay, and passes 2 and 3 write every entry
+  curvature.resize(n);
+  acc_st.resize(n);
+}
+
+namespace {
+template <class T>
+void keep_entries(std::vector<T>& a, const std::vector<std::uint8_t>& keep) {
+  if (a.size() != keep.size()) return;  // not sized to this level's particles: nothing held
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (keep[i]) a[w++] = a[i];
+  a.resize(w);
+}
+}  // namespace
+
+template <int D>
+void SurfaceFields<D>::compact_held(const std::vector<std::uint8_t>& keep) {
+  if (!held) return;
+  keep_entries(lambda, keep);
+  keep_entries(normal, keep);
+  keep_entries(curvature, keep);
+  keep_entries(acc_st, keep);
+}
+
+template <int D>
+void SurfaceFields<D>::fit_held(std::size_t n) {
+  if (!held) return;
+  lambda.resize(n, 0.0);
+  normal.resize(n, Vec<D>{});
+  curvature.resize(n, 0.0);
+  acc_st.resize(n, Vec<D>{});
 }
 
 namespace {
@@ -123,6 +152,7 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
 template <int D>
 void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                      const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
+  sf.normal.assign(ps.size(), Vec<D>{});  // walls keep 0
   using Block = CandidateBlock<D + 2>;
   const auto src = sources<D, D + 2>(cols, {cols.vol.data(), sf.lambda.data()});
   const auto pad = position_pad<D + 2, D>();
@@ -185,6 +215,8 @@ void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& p
                              const CellGrid<D>& grid, const LevelColumns<D>& cols,
                              SurfaceFields<D>& sf) {
   const auto n = static_cast<std::int64_t>(ps.size());
+  sf.curvature.resize(ps.size());  // every entry written below
+  sf.acc_st.resize(ps.size());
   for (int k = 0; k < D; ++k) sf.normal_col[k].resize(ps.size());
   exec::for_each(n, [&](std::int64_t i) {
     for (int k = 0; k < D; ++k) sf.normal_col[k][i] = sf.normal[i][k];

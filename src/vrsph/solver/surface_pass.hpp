@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "vrsph/core/mat.hpp"
@@ -31,7 +32,27 @@ struct SurfaceFields {
   LevelColumns<D> own;
   std::array<std::vector<double>, D> normal_col;
 
+  // Sizes the arrays pass 1 writes, and sizes the others without touching their values (a pass 1
+  // alone leaves what passes 2 and 3 wrote).
   void resize(std::size_t n);
+
+  // Held fields. With the capillary refresh (sim/surface_refresh.hpp) passes 2 and 3 do not run
+  // at every force evaluation, and what they wrote must follow its particle until the next
+  // refresh: while `held`, the level's sorts, compactions and appends call these.
+  bool held = false;
+  // Reorders the held arrays after a sort of the level (CellGrid::carry).
+  template <class Grid>
+  void carry(Grid& grid) {
+    if (!held) return;
+    grid.carry(lambda);
+    grid.carry(normal);
+    grid.carry(curvature);
+    grid.carry(acc_st);
+  }
+  // Keeps the entries with keep[i] != 0 (ParticleSet::compact), then sizes to n (new particles
+  // get zeros: a created particle holds no capillary acceleration until the next refresh).
+  void compact_held(const std::vector<std::uint8_t>& keep);
+  void fit_held(std::size_t n);
 };
 
 // Pass 1: M_i (and lambda_i, L_i), grad C_i, div r_i and the Shepard sum, over fluid and wall

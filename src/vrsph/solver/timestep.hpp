@@ -36,16 +36,19 @@ struct DtInputs {
   double sigma = 0.0;
 };
 
+// dt_st, the capillary limit (infinite without surface tension).
+inline double capillary_dt(double rho0, double h, double sigma) {
+  return sigma > 0.0 ? 0.25 * std::sqrt(rho0 * h * h * h / (2.0 * std::numbers::pi * sigma))
+                     : std::numeric_limits<double>::infinity();
+}
+
 inline DtChoice choose_dt(const DtInputs& in) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   const double dt_f = in.max_acc > 0.0 ? std::sqrt(in.h / in.max_acc) : inf;
   const double dt_cv =
       in.h / (std::max(in.c0, 10.0 * in.max_speed) + in.h * std::max(0.0, in.max_visc_dt));
   const double dt_visc = in.nu > 0.0 ? 0.125 * in.h * in.h / in.nu : inf;
-  const double dt_st =
-      in.sigma > 0.0
-          ? 0.25 * std::sqrt(in.rho0 * in.h * in.h * in.h / (2.0 * std::numbers::pi * in.sigma))
-          : inf;
+  const double dt_st = capillary_dt(in.rho0, in.h, in.sigma);
   DtChoice c{in.cfl * dt_f, DtLimit::force};
   if (in.cfl * dt_cv <= c.dt) c = {in.cfl * dt_cv, DtLimit::acoustic};
   if (dt_visc < c.dt) c = {dt_visc, DtLimit::viscous};

@@ -75,6 +75,7 @@ void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<
       ++tally.created;
       tally.created_mass += m;
     }
+    L.sf.fit_held(L.ps.size());
   }
 }
 
@@ -102,6 +103,7 @@ void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
   if (removed == 0) return;
   tally.deleted += removed;
   ps.compact(keep);
+  L.sf.compact_held(keep);
 }
 
 template <int D>
@@ -144,6 +146,7 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
     if (removed == 0) continue;
     tally.deleted += removed;
     removed_all += ps.compact(keep);
+    L.sf.compact_held(keep);
   }
   return removed_all;
 }
