@@ -89,10 +89,11 @@ TEST(SurfaceRefresh, CapillaryRunStaysWithTheEveryStepRun) {
   while (b.time() < sc.end_time - 1e-12) b.step();
   ASSERT_EQ(a.step_count(), b.step_count());
   const double pa = inner_pressure(a), pb = inner_pressure(b);
-  std::printf("drop at 5 ms: inner pressure %.4f (every step) %.4f Pa (capillary), %zu / %zu "
-              "capillary passes\n",
-              pa, pb, static_cast<std::size_t>(a.pass_times().capillary_passes),
-              static_cast<std::size_t>(b.pass_times().capillary_passes));
+  std::printf(
+      "drop at 5 ms: inner pressure %.4f (every step) %.4f Pa (capillary), %zu / %zu "
+      "capillary passes\n",
+      pa, pb, static_cast<std::size_t>(a.pass_times().capillary_passes),
+      static_cast<std::size_t>(b.pass_times().capillary_passes));
   EXPECT_NEAR(pb, pa, 0.01 * std::fabs(pa));
   EXPECT_EQ(a.pass_times().capillary_passes, 2u * a.step_count());
   EXPECT_LE(b.pass_times().capillary_passes, a.step_count() + 1u);
@@ -120,8 +121,8 @@ TEST(SurfaceRefresh, OutputsDoNotChangeTheRun) {
 // Laplace pressure and the run does not depend on the thread count.
 TEST(SurfaceRefresh, VariableResolutionDropHoldsItsFieldsThroughKindChanges) {
   CaseSpec spec = load_case("droplet_vr_2d.toml", with({"resolution.dp=2e-4", "case.end_time=0.004",
-                                                       "fluid_block.0.velocity=[0.1, 0]"},
-                                                      capillary(0.5)));
+                                                        "fluid_block.0.velocity=[0.1, 0]"},
+                                                       capillary(0.5)));
   const int saved = omp_get_max_threads();
   std::vector<double> one;
   for (int threads : {1, 2}) {

@@ -39,44 +39,52 @@ bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t fi
 }  // namespace
 
 template <int D>
+void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
+                                 double dt, const std::vector<double>& donor_a,
+                                 std::uint64_t& next_id, CouplingTally& tally) {
+  if (dt <= 0.0) return;
+  Level<D>& L = levels[l];
+  std::vector<MassPoint<D>>& points = link.mass_points;
+  const double m = L.prm.mass;
+  std::vector<InterpolatedState<D>> st(points.size());
+  exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t q) {
+    const MassPoint<D>& P = points[static_cast<std::size_t>(q)];
+    const auto d = static_cast<std::size_t>(P.donor);
+    const Level<D>& donor = levels[d];
+    st[static_cast<std::size_t>(q)] = interpolate_from_level<D>(
+        P.x, donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit, donor_a[d]);
+  });
+  const std::size_t first_new = L.ps.size();
+  for (std::size_t q = 0; q < points.size(); ++q) {
+    MassPoint<D>& P = points[q];
+    const InterpolatedState<D>& s = st[q];
+    // The share of the face element that holds fluid: the donor's kernel-smoothed indicator
+    // sum_j V_j W, walls counted (next to a wall the fluid sum alone falls to about 1/2 where
+    // the element is full). Across a free surface the smoothed indicator integrates to the
+    // fluid's true thickness, so the accumulated flux neither drops the top layers of a flow
+    // (as a yes/no free-surface test on div r did) nor counts whole elements half in air.
+    // Inside the fluid it is about 1. Points inside a wall (the wall sum exceeds the fluid sum)
+    // accumulate nothing. Measured: docs/validation.md, "Figures formerly in code comments".
+    if (s.shepard < kVresShepardMin || s.shepard_walls > s.shepard) continue;
+    const double fill = s.shepard + s.shepard_walls;
+    P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), fill * P.area, dt);
+    if (P.mass < m) continue;
+    const Vec<D> x_new = P.x - (0.5 * L.prm.dp) * P.n;
+    if (crowded(L, x_new, kMinSpacing * L.prm.dp, first_new)) continue;  // mass stays stored
+    P.mass -= m;
+    L.ps.push_back(next_id++, Kind::buffer, x_new, s.vel, s.rho, m);
+    ++tally.created;
+    tally.created_mass += m;
+  }
+  L.sf.fit_held(L.ps.size());
+}
+
+template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
                            double dt, std::uint64_t& next_id, CouplingTally& tally) {
-  if (dt <= 0.0) return;
-  for (std::size_t l = 0; l < levels.size(); ++l) {
-    Level<D>& L = levels[l];
-    std::vector<MassPoint<D>>& points = links[l].mass_points;
-    const double m = L.prm.mass;
-    std::vector<InterpolatedState<D>> st(points.size());
-    exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t q) {
-      const MassPoint<D>& P = points[static_cast<std::size_t>(q)];
-      const Level<D>& donor = levels[static_cast<std::size_t>(P.donor)];
-      st[static_cast<std::size_t>(q)] =
-          interpolate_from_level<D>(P.x, donor.ps, donor.grid, donor.prm.kernel);
-    });
-    const std::size_t first_new = L.ps.size();
-    for (std::size_t q = 0; q < points.size(); ++q) {
-      MassPoint<D>& P = points[q];
-      const InterpolatedState<D>& s = st[q];
-      // The share of the face element that holds fluid: the donor's kernel-smoothed indicator
-      // sum_j V_j W, walls counted (next to a wall the fluid sum alone falls to about 1/2 where
-      // the element is full). Across a free surface the smoothed indicator integrates to the
-      // fluid's true thickness, so the accumulated flux neither drops the top layers of a flow
-      // (as a yes/no free-surface test on div r did) nor counts whole elements half in air.
-      // Inside the fluid it is about 1. Points inside a wall (the wall sum exceeds the fluid sum)
-      // accumulate nothing. Measured: docs/validation.md, "Figures formerly in code comments".
-      if (s.shepard < kVresShepardMin || s.shepard_walls > s.shepard) continue;
-      const double fill = s.shepard + s.shepard_walls;
-      P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), fill * P.area, dt);
-      if (P.mass < m) continue;
-      const Vec<D> x_new = P.x - (0.5 * L.prm.dp) * P.n;
-      if (crowded(L, x_new, kMinSpacing * L.prm.dp, first_new)) continue;  // mass stays stored
-      P.mass -= m;
-      L.ps.push_back(next_id++, Kind::buffer, x_new, s.vel, s.rho, m);
-      ++tally.created;
-      tally.created_mass += m;
-    }
-    L.sf.fit_held(L.ps.size());
-  }
+  const std::vector<double> now(levels.size(), 1.0);
+  for (std::size_t l = 0; l < levels.size(); ++l)
+    accumulate_and_create_level(levels, links[l], l, dt, now, next_id, tally);
 }
 
 template <int D>
@@ -106,48 +114,80 @@ void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
   L.sf.compact_held(keep);
 }
 
+namespace {
+
+// Buffer values of level l from its donors (keep[i] = 0: delete particle i).
+template <int D>
+void buffer_values(std::vector<Level<D>>& levels, const LevelLink<D>& link, std::size_t l,
+                   double fill_min, const std::vector<double>& donor_a,
+                   std::vector<std::uint8_t>& keep) {
+  ParticleSet<D>& ps = levels[l].ps;
+  keep.assign(ps.size(), 1);
+  exec::for_each_dynamic(static_cast<std::int64_t>(ps.size()), 64, [&](std::int64_t ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if (ps.kind[i] != Kind::buffer) return;
+    const ZoneInfo<D> z = link.region.classify(ps.pos[i]);
+    const auto d = static_cast<std::size_t>(z.donor);
+    const Level<D>& donor = levels[d];
+    const InterpolatedState<D> s = interpolate_from_level<D>(
+        ps.pos[i], donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit, donor_a[d]);
+    // No donor fluid in reach, or (numerics.vres_buffer_fill_min > 0, not part of Ricci et
+    // al.) outside the donor's free surface. Buffer particles follow the donor's velocity and
+    // nothing pulls them back to its surface: without the second test, those carried beyond
+    // it stay there, and the level's surface can stand proud where it crosses the interface,
+    // which lowers the drop's pressure (2D VR droplet; docs/validation.md, "Figures formerly
+    // in code comments"). On the relaxing square drop the same test dented the top crossing
+    // instead.
+    if (s.shepard < kVresShepardMin || donor_fill(s) < fill_min) {
+      keep[i] = 0;
+      return;
+    }
+    ps.rho[i] = s.rho;
+    ps.vel[i] = s.vel;
+  });
+}
+
+// Deletes the particles with keep[i] = 0 (the level must be re-sorted afterwards).
+template <int D>
+std::size_t remove_unkept(Level<D>& L, const std::vector<std::uint8_t>& keep,
+                          CouplingTally& tally) {
+  std::uint64_t removed = 0;
+  for (std::size_t i = 0; i < L.ps.size(); ++i) {
+    if (keep[i]) continue;
+    tally.deleted_mass += L.ps.mass[i];
+    ++removed;
+  }
+  if (removed == 0) return 0;
+  tally.deleted += removed;
+  const std::size_t r = L.ps.compact(keep);
+  L.sf.compact_held(keep);
+  return r;
+}
+
+}  // namespace
+
+template <int D>
+std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const LevelLink<D>& link,
+                                      std::size_t l, CouplingTally& tally, double fill_min,
+                                      const std::vector<double>& donor_a) {
+  std::vector<std::uint8_t> keep;
+  buffer_values(levels, link, l, fill_min, donor_a, keep);
+  return remove_unkept(levels[l], keep, tally);
+}
+
+// Every level's values first, then the deletions: a level compacted before another had read it
+// as a donor would leave that donor's grid pointing at the wrong particles.
 template <int D>
 std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
                                 const std::vector<LevelLink<D>>& links, CouplingTally& tally,
                                 double fill_min) {
+  const std::vector<double> now(levels.size(), 1.0);
+  std::vector<std::vector<std::uint8_t>> keep(levels.size());
+  for (std::size_t l = 0; l < levels.size(); ++l)
+    buffer_values(levels, links[l], l, fill_min, now, keep[l]);
   std::size_t removed_all = 0;
-  for (std::size_t l = 0; l < levels.size(); ++l) {
-    Level<D>& L = levels[l];
-    ParticleSet<D>& ps = L.ps;
-    const auto n = static_cast<std::int64_t>(ps.size());
-    std::vector<std::uint8_t> keep(ps.size(), 1);
-    exec::for_each_dynamic(n, 64, [&](std::int64_t ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      if (ps.kind[i] != Kind::buffer) return;
-      const ZoneInfo<D> z = links[l].region.classify(ps.pos[i]);
-      const Level<D>& donor = levels[static_cast<std::size_t>(z.donor)];
-      const InterpolatedState<D> s =
-          interpolate_from_level<D>(ps.pos[i], donor.ps, donor.grid, donor.prm.kernel);
-      // No donor fluid in reach, or (numerics.vres_buffer_fill_min > 0, not part of Ricci et
-      // al.) outside the donor's free surface. Buffer particles follow the donor's velocity and
-      // nothing pulls them back to its surface: without the second test, those carried beyond
-      // it stay there, and the level's surface can stand proud where it crosses the interface,
-      // which lowers the drop's pressure (2D VR droplet; docs/validation.md, "Figures formerly
-      // in code comments"). On the relaxing square drop the same test dented the top crossing
-      // instead.
-      if (s.shepard < kVresShepardMin || donor_fill(s) < fill_min) {
-        keep[i] = 0;
-        return;
-      }
-      ps.rho[i] = s.rho;
-      ps.vel[i] = s.vel;
-    });
-    std::uint64_t removed = 0;
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      if (keep[i]) continue;
-      tally.deleted_mass += ps.mass[i];
-      ++removed;
-    }
-    if (removed == 0) continue;
-    tally.deleted += removed;
-    removed_all += ps.compact(keep);
-    L.sf.compact_held(keep);
-  }
+  for (std::size_t l = 0; l < levels.size(); ++l)
+    removed_all += remove_unkept(levels[l], keep[l], tally);
   return removed_all;
 }
 
@@ -155,6 +195,18 @@ template void accumulate_and_create<2>(std::vector<Level<2>>&, std::vector<Level
                                        std::uint64_t&, CouplingTally&);
 template void accumulate_and_create<3>(std::vector<Level<3>>&, std::vector<LevelLink<3>>&, double,
                                        std::uint64_t&, CouplingTally&);
+template void accumulate_and_create_level<2>(std::vector<Level<2>>&, LevelLink<2>&, std::size_t,
+                                             double, const std::vector<double>&, std::uint64_t&,
+                                             CouplingTally&);
+template void accumulate_and_create_level<3>(std::vector<Level<3>>&, LevelLink<3>&, std::size_t,
+                                             double, const std::vector<double>&, std::uint64_t&,
+                                             CouplingTally&);
+template std::size_t interpolate_buffers_level<2>(std::vector<Level<2>>&, const LevelLink<2>&,
+                                                  std::size_t, CouplingTally&, double,
+                                                  const std::vector<double>&);
+template std::size_t interpolate_buffers_level<3>(std::vector<Level<3>>&, const LevelLink<3>&,
+                                                  std::size_t, CouplingTally&, double,
+                                                  const std::vector<double>&);
 template void update_kinds<2>(Level<2>&, const LevelLink<2>&, CouplingTally&);
 template void update_kinds<3>(Level<3>&, const LevelLink<3>&, CouplingTally&);
 template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&,

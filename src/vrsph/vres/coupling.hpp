@@ -41,6 +41,14 @@ template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
                            double dt, std::uint64_t& next_id, CouplingTally& tally);
 
+// Step 1 for level l alone, each donor level d read at the fraction donor_a[d] of its last step
+// (interpolate_from_level; 1: its current state). Local time stepping calls it at the end of
+// each of level l's own steps, with dt that step.
+template <int D>
+void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
+                                 double dt, const std::vector<double>& donor_a,
+                                 std::uint64_t& next_id, CouplingTally& tally);
+
 // Step 2 for one level (particles are compacted; the level must be re-sorted afterwards).
 template <int D>
 void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally);
@@ -51,5 +59,11 @@ template <int D>
 std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
                                 const std::vector<LevelLink<D>>& links, CouplingTally& tally,
                                 double fill_min);
+
+// Step 3 for level l alone, donors as in accumulate_and_create_level. Returns the number deleted.
+template <int D>
+std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const LevelLink<D>& link,
+                                      std::size_t l, CouplingTally& tally, double fill_min,
+                                      const std::vector<double>& donor_a);
 
 }  // namespace vrsph

@@ -37,24 +37,39 @@ struct DonorSums {
   }
 };
 
+// Donor j at the fraction a of its last step: the states at the step's start (pos0, vel0, rho0)
+// and end, linearly interpolated; a = 1 is the current state itself.
+template <int D>
+struct DonorAt {
+  Vec<D> x{}, v{};
+  double rho = 0.0;
+};
+template <int D>
+inline DonorAt<D> donor_at(const ParticleSet<D>& ps, std::uint32_t j, double a) {
+  if (a == 1.0) return {ps.pos[j], ps.vel[j], ps.rho[j]};
+  return {ps.pos0[j] + a * (ps.pos[j] - ps.pos0[j]), ps.vel0[j] + a * (ps.vel[j] - ps.vel0[j]),
+          ps.rho0[j] + a * (ps.rho[j] - ps.rho0[j])};
+}
+
 template <int D>
 InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donors,
                                     const CellGrid<D>& grid, const WendlandC2<D>& kernel,
-                                    double cond_limit) {
+                                    double cond_limit, double a) {
   InterpolatedState<D> out;
   std::int64_t c = 0;
   if (donors.size() == 0 || !grid.stencil_cell(x, c)) return out;
   DonorSums<D> s;
   grid.for_each_run(c, Group::fluid, [&](std::uint32_t begin, std::uint32_t end) {
     for (std::uint32_t j = begin; j < end; ++j) {
-      const Vec<D> r = x - donors.pos[j];
+      const DonorAt<D> dj = donor_at(donors, j, a);
+      const Vec<D> r = x - dj.x;
       const double r2 = norm2(r);
       if (r2 >= kernel.support2) continue;
       if (donors.kind[j] != Kind::fluid) {  // buffer: counted in the fill only
-        out.shepard_buffer += donors.mass[j] / donors.rho[j] * kernel.w(std::sqrt(r2));
+        out.shepard_buffer += donors.mass[j] / dj.rho * kernel.w(std::sqrt(r2));
         continue;
       }
-      s.add(r, r2, donors.mass[j] / donors.rho[j], donors.rho[j], donors.vel[j], kernel);
+      s.add(r, r2, donors.mass[j] / dj.rho, dj.rho, dj.v, kernel);
     }
   });
   out.shepard = s.a[0][0];
@@ -89,8 +104,8 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
 template <int D>
 InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D>& donors,
                                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
-                                            double cond_limit) {
-  return interpolate_at(x, donors, grid, kernel, cond_limit);
+                                            double cond_limit, double a) {
+  return interpolate_at(x, donors, grid, kernel, cond_limit, a);
 }
 
 template <int D, class T>
@@ -119,16 +134,16 @@ void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet
                             std::vector<InterpolatedState<D>>& out, double cond_limit) {
   out.resize(points.size());
   exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t i) {
-    out[i] = interpolate_at(points[i], donors, grid, kernel, cond_limit);
+    out[i] = interpolate_at(points[i], donors, grid, kernel, cond_limit, 1.0);
   });
 }
 
 template InterpolatedState<2> interpolate_from_level(const Vec<2>&, const ParticleSet<2>&,
                                                      const CellGrid<2>&, const WendlandC2<2>&,
-                                                     double);
+                                                     double, double);
 template InterpolatedState<3> interpolate_from_level(const Vec<3>&, const ParticleSet<3>&,
                                                      const CellGrid<3>&, const WendlandC2<3>&,
-                                                     double);
+                                                     double, double);
 template void interpolate_from_level(const std::vector<Vec<2>>&, const ParticleSet<2>&,
                                      const CellGrid<2>&, const WendlandC2<2>&,
                                      std::vector<InterpolatedState<2>>&, double);

@@ -82,10 +82,16 @@ inline double donor_fill(const InterpolatedState<D>& s) {
 // Values at point x from the Kind::fluid particles of a donor level (particle set, its cell grid
 // after a sort, its kernel). Points with no donor in reach (also beyond the particle cloud or
 // the domain) return shepard = 0. No heap allocation.
+// Local time stepping: `a` in [0, 1] is the time within the donor's last step, as a fraction of
+// it, and each donor's position, velocity and density are interpolated linearly between the
+// step's start (pos0, vel0, rho0) and its end; a = 1 (the default) reads the current state. The
+// neighbours are found with the grid of the current positions: a donor moves a small fraction
+// of h in one step, so the only ones missed sit at the edge of the support, where W vanishes
+// to fourth order.
 template <int D>
 InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D>& donors,
                                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
-                                            double cond_limit = kVresCondLimit);
+                                            double cond_limit = kVresCondLimit, double a = 1.0);
 
 // The same for many points, in parallel (OpenMP, static schedule): out[i] for points[i]. out is
 // resized to points.size() (no allocation once it is large enough).
