@@ -13,59 +13,11 @@
 #include <vector>
 
 #include "cli_util.hpp"
+#include "restart_util.hpp"
 
 namespace {
 
 using namespace vrsph_cli;
-
-constexpr int kExitHalted = 9;
-
-std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
-  args.insert(args.end(), more.begin(), more.end());
-  return args;
-}
-
-// Every snapshot in the pvd once, in order, with increasing times.
-void expect_clean_pvd(const fs::path& dir, std::size_t n) {
-  const auto pvd = read_pvd(dir / "particles.pvd");
-  ASSERT_EQ(pvd.size(), n) << read_text(dir / "particles.pvd");
-  std::set<std::string> files;
-  for (std::size_t k = 0; k < pvd.size(); ++k) {
-    EXPECT_EQ(pvd[k].file, snapshot(static_cast<int>(k), "vtp"));
-    files.insert(pvd[k].file);
-    if (k > 0) {
-      EXPECT_GT(pvd[k].time, pvd[k - 1].time);
-    }
-  }
-  EXPECT_EQ(files.size(), n);
-}
-
-// The deterministic part of summary.json (no timings) is the same.
-void expect_same_summary(const fs::path& a, const fs::path& b) {
-  const auto ja = nlohmann::json::parse(read_text(a / "summary.json"));
-  const auto jb = nlohmann::json::parse(read_text(b / "summary.json"));
-  for (const char* key :
-       {"completed", "steps", "sim_time", "n_particles", "threads", "lost_fluid", "dt_limits"}) {
-    EXPECT_EQ(ja.value(key, nlohmann::json()), jb.value(key, nlohmann::json())) << key;
-  }
-}
-
-// Snapshots 0..last of both folders are byte-identical (csv where written, and vtp), as are
-// series.csv and particles.pvd.
-void expect_same_outputs(const fs::path& a, const fs::path& b, int last, bool csv) {
-  for (int k = 0; k <= last; ++k) {
-    ASSERT_TRUE(fs::exists(b / snapshot(k, "vtp"))) << k;
-    EXPECT_TRUE(same_bytes(a / snapshot(k, "vtp"), b / snapshot(k, "vtp"))) << "snapshot " << k;
-    if (csv) {
-      EXPECT_TRUE(same_bytes(a / snapshot(k, "csv"), b / snapshot(k, "csv"))) << "snapshot " << k;
-    }
-  }
-  EXPECT_FALSE(fs::exists(b / snapshot(last + 1, "vtp")));
-  EXPECT_TRUE(same_bytes(a / "series.csv", b / "series.csv"));
-  EXPECT_TRUE(same_bytes(a / "particles.pvd", b / "particles.pvd"));
-  expect_clean_pvd(b, static_cast<std::size_t>(last + 1));
-  expect_same_summary(a, b);
-}
 
 // 2D dam break at dp = 0.04 m to 20 ms, a snapshot every 5 ms: snapshots 0..4, 172 steps.
 std::vector<std::string> dam_break_20ms(const fs::path& out) {
@@ -360,40 +312,6 @@ TEST(Restart, HaltedRunResumesToTheSameBytes3D) {
   const CmdResult resumed = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1"});
   ASSERT_EQ(resumed.status, 0) << resumed;
   expect_same_outputs(a, b, 4, true);
-}
-
-// droplet_vr_2d at dp 2e-4 / 1e-4 to 6 ms, a snapshot every 1.5 ms, halted after snapshot 2 and
-// resumed: two levels, buffers, mass points with stored masses and kind changes all go through
-// the checkpoint (and, with the capillary refresh, the held capillary acceleration).
-void expect_vr_drop_resumes(const std::vector<std::string>& sets) {
-  TempDir dir;
-  const fs::path a = dir / "a", b = dir / "b";
-  auto args = [&](const fs::path& out) {
-    std::vector<std::string> v = {"run",     (kCases / "droplet_vr_2d.toml").string(),
-                                  "--out",   out.string(),
-                                  "--quiet", "--threads",
-                                  "1"};
-    for (const char* k : {"resolution.dp=2e-4", "case.end_time=0.006", "output.interval=0.0015"})
-      v.insert(v.end(), {"--set", k});
-    return with(v, sets);
-  };
-  const CmdResult ra = dir.run(args(a));
-  ASSERT_EQ(ra.status, 0) << ra;
-  const CmdResult halted = dir.run(with(args(b), {"--halt-after-output", "2"}));
-  ASSERT_EQ(halted.status, kExitHalted) << halted;
-  const CmdResult resumed = dir.run({"run", "--resume", b.string(), "--quiet", "--threads", "1"});
-  ASSERT_EQ(resumed.status, 0) << resumed;
-  expect_same_outputs(a, b, 4, true);
-  const auto lines = read_lines(a / "series.csv");
-  EXPECT_NE(lines.front().find("n_fluid_L1"), std::string::npos);
-}
-
-TEST(Restart, HaltedVariableResolutionRunResumesToTheSameBytes) { expect_vr_drop_resumes({}); }
-
-// The halt falls between two refreshes: the resumed run must not refresh early.
-TEST(Restart, HaltedCapillaryRefreshRunResumesToTheSameBytes) {
-  expect_vr_drop_resumes({"--set", "numerics.surface_tension.refresh=\"capillary\"", "--set",
-                          "numerics.surface_tension.refresh_interval=0.5"});
 }
 
 }  // namespace

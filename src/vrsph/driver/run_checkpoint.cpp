@@ -44,11 +44,13 @@ void check_case(const Checkpoint& ck, const CaseSpec& spec, const std::filesyste
 namespace {
 
 // The capillary refresh's held acceleration ("levelN.acc_st", D values per particle) and the
-// time of the last refresh: without them a resumed run would refresh at once where the
-// uninterrupted run did not.
+// time of the last refresh of each clock: without them a resumed run would refresh at once where
+// the uninterrupted run did not.
 template <int D>
 void put_held_fields(Checkpoint& ck, const Simulation<D>& sim) {
-  ck.put_value("surface.refresh_time", sim.refresh_clock().last());
+  std::vector<double> last;
+  for (const RefreshClock& c : sim.refresh_clocks()) last.push_back(c.last());
+  ck.put("surface.refresh_times", last);
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     const auto& a = sim.level(l).sf.acc_st;
     std::vector<double> flat;
@@ -62,7 +64,11 @@ void put_held_fields(Checkpoint& ck, const Simulation<D>& sim) {
 // A checkpoint without them (written with refresh = "every_step" before) refreshes at once.
 template <int D>
 void get_held_fields(const Checkpoint& ck, Simulation<D>& sim) {
-  if (!ck.has("surface.refresh_time")) return;
+  if (!ck.has("surface.refresh_times")) return;
+  const auto& last = ck.f64("surface.refresh_times");
+  if (last.size() != sim.refresh_clocks().size())
+    throw CheckpointError(fmt::format("surface.refresh_times: {} clocks for {} levels", last.size(),
+                                      sim.refresh_clocks().size()));
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     auto& L = sim.level(l);
     const auto& flat = ck.f64(fmt::format("level{}.acc_st", l));
@@ -74,7 +80,7 @@ void get_held_fields(const Checkpoint& ck, Simulation<D>& sim) {
     for (std::size_t i = 0; i < L.ps.size(); ++i)
       for (int k = 0; k < D; ++k) L.sf.acc_st[i][k] = flat[i * D + k];
   }
-  sim.restore_refresh(ck.value<double>("surface.refresh_time"));
+  for (std::size_t k = 0; k < last.size(); ++k) sim.restore_refresh(k, last[k]);
 }
 
 }  // namespace
@@ -94,6 +100,7 @@ Checkpoint make_checkpoint(const Simulation<D>& sim, std::int64_t output_index) 
   Checkpoint ck;
   put_run_state(ck, s);
   if (sim.holds_surface_fields()) put_held_fields(ck, sim);
+  if (sim.local_time_stepping()) ck.put("lts.level_dt", sim.level_dts());
   for (std::size_t l = 0; l < nl; ++l) {
     ck.put_particles<D>(static_cast<int>(l), sim.level(l).ps);
     if (nl > 1) {
@@ -127,6 +134,7 @@ RunState restore_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
   }
   sim.restore(s.time, s.step, s.dt_next, s.counters, s.initial_fluid);
   if (sim.holds_surface_fields()) get_held_fields(ck, sim);  // before the sort, which carries them
+  if (sim.local_time_stepping()) sim.restore_level_dts(ck.f64("lts.level_dt"));
   sim.resort();
   return s;
 }

@@ -28,6 +28,7 @@ inline constexpr std::string_view kNumericsKeys[] = {"cfl",
                                                      "shifting",
                                                      "surface_tension",
                                                      "hydrostatic_initial_density",
+                                                     "local_time_stepping",
                                                      "vres_conserve_momentum",
                                                      "vres_buffer_fill_min"};
 // The model tables of [numerics] (usually written as inline tables).

@@ -168,6 +168,7 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
       r.opt_number("vres_buffer_fill_min", kBelowHalf).value_or(spec.vres_buffer_fill_min);
   n.hydrostatic_initial_density =
       r.opt_bool("hydrostatic_initial_density").value_or(n.hydrostatic_initial_density);
+  n.local_time_stepping = r.opt_bool("local_time_stepping").value_or(n.local_time_stepping);
 }
 
 // One [[fluid_block]]: circle/sphere (center, radius >= dp) or box (min, max).

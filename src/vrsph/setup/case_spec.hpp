@@ -97,6 +97,7 @@ struct NumericsSpec {
   ShiftingParams shifting;
   SurfaceTensionParams surface_tension;
   bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
+  bool local_time_stepping = false;         // variable resolution: each level on its own dt
 
   bool operator==(const NumericsSpec&) const = default;
 };

@@ -124,6 +124,8 @@ void write_numerics(Writer& w, const CaseSpec& s) {
   w.kv("shifting", shifting_table(n.shifting));
   w.kv("surface_tension", surface_tension_table(n.surface_tension));
   w.kv("hydrostatic_initial_density", toml_bool(n.hydrostatic_initial_density));
+  if (n.local_time_stepping)  // written only when on, as precision
+    w.kv("local_time_stepping", "true", "each resolution level on its own dt");
   w.kv("vres_conserve_momentum", toml_bool(s.vres_conserve_momentum));
   w.kv("vres_buffer_fill_min", num(s.vres_buffer_fill_min),
        "donor fill below which a buffer particle is deleted (0.5 on a free surface)");

@@ -46,19 +46,6 @@ Setup resolve_setup(CaseSpec& spec, const InitialSet<D>& init0) {
   return setup;
 }
 
-// The capillary refresh (sim/surface_refresh.hpp): its interval from the smallest capillary
-// limit over the levels (one clock for all levels, as for dt), and every level holds its fields.
-template <int D>
-void start_refresh_clock(const CaseSpec& spec, std::vector<Level<D>>& levels, RefreshClock& clock) {
-  const SurfaceTensionParams& st = spec.numerics.surface_tension;
-  if (!(spec.fluid.surface_tension > 0.0) || st.refresh != SurfaceRefresh::capillary) return;
-  double dt_st = std::numeric_limits<double>::infinity();
-  for (const Level<D>& L : levels)
-    dt_st = std::min(dt_st, capillary_dt(L.prm.eos.rho0, L.prm.h, L.prm.sigma));
-  clock = RefreshClock(st.refresh_interval * dt_st);
-  for (Level<D>& L : levels) L.sf.held = true;
-}
-
 }  // namespace
 
 template <int D>
@@ -84,7 +71,6 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
   }
   counters_.next_id = next_id;
-  start_refresh_clock(spec, levels_, refresh_);
   const CouplingOptions opt{spec.vres_conserve_momentum,
                             spec.numerics.surface_tension.zero_net_force,
                             spec.vres_buffer_fill_min};
@@ -111,6 +97,8 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
   dt_next_ = 1e300;
   for (const Level<D>& L : levels_)
     dt_next_ = std::min(dt_next_, level_dt_at_start(L, setup_.c0).dt);
+  start_local_stepping();
+  start_refresh_clocks();
 }
 
 template <int D>
@@ -199,38 +187,6 @@ DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
   return best;
 }
 
-// The surface passes of every level, each pass on all levels before the next, so that the
-// coupling can give buffer particles lambda (after pass 1) and the normal (after pass 2) from the
-// other level before the next pass uses them. Passes 2 and 3 only when `capillary`.
-template <int D>
-void Simulation<D>::surface_passes(bool capillary) {
-  for (Level<D>& L : levels_) surface_pass_sums(L);
-  if (!capillary) return;
-  coupling_.after_surface_sums(levels_);
-  for (Level<D>& L : levels_) surface_pass_normals(L);
-  coupling_.after_normals(levels_);
-  for (Level<D>& L : levels_) surface_pass_curvature(L);
-}
-
-// The surface fields a force evaluation at t_eval needs. The capillary acceleration: at every
-// evaluation, or when the refresh clock says so (held in between). Pass 1 alone: at the
-// corrector's stage, for shifting's grad C and div r; the first stage's pass 1 would feed
-// nothing but passes 2 and 3.
-template <int D>
-void Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
-  if (!has_surface_fields()) return;
-  const bool capillary = levels_[0].prm.sigma > 0.0 && refresh_.due(t_eval, corrector_stage);
-  const bool shifting = levels_[0].prm.shifting.model != ShiftingModel::none;
-  if (!capillary && !(shifting && corrector_stage)) return;
-  const double t0 = now_seconds();
-  surface_passes(capillary);
-  if (capillary) {
-    refresh_.mark(t_eval);
-    ++times_.capillary_passes;
-  }
-  times_.surface += now_seconds() - t0;
-}
-
 // One force evaluation of all levels at t_eval: the surface passes, then the pair forces of each
 // level with the surface-tension acceleration added, then the coupling's net-force corrections.
 template <int D>
@@ -244,24 +200,6 @@ ForceStats Simulation<D>::evaluate_forces(double t_eval, bool corrector_stage) {
   coupling_.after_forces(levels_, st);
   times_.forces += now_seconds() - t0;
   return s;
-}
-
-// Every surface field of every level for the current state (outputs). Held fields are swapped
-// out first, so that an output never changes the run.
-template <int D>
-void Simulation<D>::update_surface_fields() {
-  const double keep = times_.surface;  // output work, not stepping time
-  const bool hold = holds_surface_fields();
-  if (hold) {
-    output_sf_.resize(levels_.size());
-    for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
-  }
-  for (Level<D>& L : levels_) pack_level(L);
-  surface_passes(has_surface_fields() && levels_[0].prm.sigma > 0.0);
-  if (hold) {
-    for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
-  }
-  times_.surface = keep;
 }
 
 // The coupling after a step (or at the start, dt = 0): mass points, kind changes, buffer values.
@@ -288,6 +226,10 @@ StepPlan Simulation<D>::plan_step() const {
 template <int D>
 void Simulation<D>::step() {
   const StepPlan plan = plan_step();
+  if (local_) {
+    step_local(plan);
+    return;
+  }
   const double dt = plan.dt;
   ForceStats s = evaluate_forces(t_, false);
   double t0 = now_seconds();

@@ -134,9 +134,25 @@ class Simulation {
   }
   // Capillary refresh (sim/surface_refresh.hpp): the capillary acceleration is held between
   // refreshes; checkpoints keep it and the time of the last refresh.
-  bool holds_surface_fields() const { return !refresh_.every_step(); }
-  const RefreshClock& refresh_clock() const { return refresh_; }
-  void restore_refresh(double last) { refresh_.restore(last); }
+  bool holds_surface_fields() const {
+    for (const RefreshClock& c : refresh_)
+      if (!c.every_step()) return true;
+    return false;
+  }
+  // One clock per level (local time stepping) or clock 0 for all.
+  const std::vector<RefreshClock>& refresh_clocks() const { return refresh_; }
+  void restore_refresh(std::size_t k, double last) { refresh_[k].restore(last); }
+
+  // Local time stepping (numerics.local_time_stepping, sim/local_stepping.cpp).
+  bool local_time_stepping() const { return local_; }
+  // The time level k has reached (the end of its last step), its steps so far, and the dt it
+  // allows after its last step (checkpoints keep these; level 0's is dt_next()).
+  double level_time(std::size_t k) const { return local_ ? level_t1_[k] : t_; }
+  std::uint64_t level_steps(std::size_t k) const {
+    return local_ ? level_steps_[k] : static_cast<std::uint64_t>(step_);
+  }
+  const std::vector<double>& level_dts() const { return level_dt_; }
+  void restore_level_dts(const std::vector<double>& dts);
   bool has_surface_fields() const {
     return params().sigma > 0.0 || params().shifting.model != ShiftingModel::none;
   }
@@ -149,6 +165,18 @@ class Simulation {
   ForceStats evaluate_forces(double t_eval, bool corrector_stage);
   void surface_fields_all(double t_eval, bool corrector_stage);
   void surface_passes(bool capillary);
+  void start_refresh_clocks();
+  // Local time stepping (sim/local_stepping.cpp).
+  void start_local_stepping();
+  void step_local(const StepPlan& plan);
+  void advance_level(std::size_t k, double t0, double t1);
+  void cycle_child(std::size_t c, double t0, double t1);
+  void step_one_level(std::size_t k, double t0, double dt);
+  ForceStats evaluate_level(std::size_t k, double t_eval, bool corrector_stage, double dt);
+  void surface_fields_level(std::size_t k, double t_eval, bool corrector_stage);
+  void couple_level(std::size_t k, double dt, double t);
+  std::vector<double> donor_fractions(double t) const;
+  void check_level_dt(std::size_t k) const;
   DtChoice next_dt(const ForceStats& s) const;
   void couple_levels(double dt);
   StepPlan plan_step() const;
@@ -167,8 +195,15 @@ class Simulation {
   std::size_t initial_fluid_ = 0;
   RunCounters counters_;
   PassTimes times_;
-  RefreshClock refresh_;
+  std::vector<RefreshClock> refresh_;
   std::vector<SurfaceFields<D>> output_sf_;  // held fields only: what outputs read
+  // Local time stepping: the level tree, each level's last step [t0, t1], its allowed dt and
+  // step count, and the net-force impulse summed since the levels last met.
+  bool local_ = false;
+  std::vector<std::vector<std::size_t>> children_;
+  std::vector<double> level_t0_, level_t1_, level_dt_;
+  std::vector<std::uint64_t> level_steps_;
+  Vec<D> impulse_{};
 };
 
 }  // namespace vrsph

@@ -32,38 +32,50 @@ constexpr double kBufferNormalReach = 2.0;
 // otherwise.
 template <int D>
 template <class T>
-void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels,
+void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std::size_t l,
                                              std::vector<T> SurfaceFields<D>::*field,
                                              double reach_h) const {
-  for (std::size_t l = 0; l < levels.size(); ++l) {
-    Level<D>& L = levels[l];
-    const LevelRegion<D>& region = links_[l].region;
-    std::vector<T>& own = L.sf.*field;
-    exec::for_each_dynamic(static_cast<std::int64_t>(L.ps.size()), 64, [&](std::int64_t ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      if (L.ps.kind[i] != Kind::buffer) return;
-      const ZoneInfo<D> z = region.classify(L.ps.pos[i]);
-      if (z.donor < 0) return;  // moved into the fluid region during the step: kind changes later
-      if (z.depth + reach_h * L.prm.h <= z.width) return;  // own support inside fluid + shell
-      const Level<D>& dl = levels[static_cast<std::size_t>(z.donor)];
-      T v = shepard_field<D, T>(L.ps.pos[i], dl.ps, dl.grid, dl.prm.kernel, dl.sf.*field, T{});
-      if constexpr (std::is_same_v<T, Vec<D>>) {
-        const double m = norm(v);
-        v = m >= 0.5 ? v * (1.0 / m) : Vec<D>{};
-      }
-      own[i] = v;
-    });
-  }
+  Level<D>& L = levels[l];
+  const LevelRegion<D>& region = links_[l].region;
+  std::vector<T>& own = L.sf.*field;
+  exec::for_each_dynamic(static_cast<std::int64_t>(L.ps.size()), 64, [&](std::int64_t ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if (L.ps.kind[i] != Kind::buffer) return;
+    const ZoneInfo<D> z = region.classify(L.ps.pos[i]);
+    if (z.donor < 0) return;  // moved into the fluid region during the step: kind changes later
+    if (z.depth + reach_h * L.prm.h <= z.width) return;  // own support inside fluid + shell
+    const Level<D>& dl = levels[static_cast<std::size_t>(z.donor)];
+    const std::vector<T>& donor_field = dl.sf.*field;
+    if (donor_field.size() != dl.ps.size()) return;  // the donor holds no such field yet
+    T v = shepard_field<D, T>(L.ps.pos[i], dl.ps, dl.grid, dl.prm.kernel, donor_field, T{});
+    if constexpr (std::is_same_v<T, Vec<D>>) {
+      const double m = norm(v);
+      v = m >= 0.5 ? v * (1.0 / m) : Vec<D>{};
+    }
+    own[i] = v;
+  });
+}
+
+template <int D>
+void LevelCoupling<D>::after_surface_sums(std::vector<Level<D>>& levels, std::size_t l) const {
+  if (multi_level())
+    exchange_buffer_field(levels, l, &SurfaceFields<D>::lambda, kBufferLambdaReach);
+}
+
+template <int D>
+void LevelCoupling<D>::after_normals(std::vector<Level<D>>& levels, std::size_t l) const {
+  if (multi_level())
+    exchange_buffer_field(levels, l, &SurfaceFields<D>::normal, kBufferNormalReach);
 }
 
 template <int D>
 void LevelCoupling<D>::after_surface_sums(std::vector<Level<D>>& levels) const {
-  if (multi_level()) exchange_buffer_field(levels, &SurfaceFields<D>::lambda, kBufferLambdaReach);
+  for (std::size_t l = 0; l < levels.size(); ++l) after_surface_sums(levels, l);
 }
 
 template <int D>
 void LevelCoupling<D>::after_normals(std::vector<Level<D>>& levels) const {
-  if (multi_level()) exchange_buffer_field(levels, &SurfaceFields<D>::normal, kBufferNormalReach);
+  for (std::size_t l = 0; l < levels.size(); ++l) after_normals(levels, l);
 }
 
 // The optional corrections of momentum.hpp: the net coupling force F_c (variable resolution) and
@@ -82,21 +94,24 @@ void LevelCoupling<D>::after_forces(std::vector<Level<D>>& levels, bool capillar
 }
 
 template <int D>
-void LevelCoupling<D>::before_corrector(std::vector<Level<D>>& levels) const {
+void LevelCoupling<D>::before_corrector(std::vector<Level<D>>& levels, std::size_t l) const {
   if (!multi_level()) return;
-  for (std::size_t l = 0; l < levels.size(); ++l) {
-    Level<D>& L = levels[l];
-    if (L.prm.shifting.model == ShiftingModel::none) {  // the corrector shifts nothing
-      L.buffer_shift_normal.clear();
-      continue;
-    }
-    const LevelRegion<D>& region = links_[l].region;
-    L.buffer_shift_normal.resize(L.ps.size());
-    exec::for_each(static_cast<std::int64_t>(L.ps.size()), [&](std::int64_t i) {
-      L.buffer_shift_normal[i] =
-          L.ps.kind[i] == Kind::buffer ? region.classify(L.ps.pos0[i]).face_normal : Vec<D>{};
-    });
+  Level<D>& L = levels[l];
+  if (L.prm.shifting.model == ShiftingModel::none) {  // the corrector shifts nothing
+    L.buffer_shift_normal.clear();
+    return;
   }
+  const LevelRegion<D>& region = links_[l].region;
+  L.buffer_shift_normal.resize(L.ps.size());
+  exec::for_each(static_cast<std::int64_t>(L.ps.size()), [&](std::int64_t i) {
+    L.buffer_shift_normal[i] =
+        L.ps.kind[i] == Kind::buffer ? region.classify(L.ps.pos0[i]).face_normal : Vec<D>{};
+  });
+}
+
+template <int D>
+void LevelCoupling<D>::before_corrector(std::vector<Level<D>>& levels) const {
+  for (std::size_t l = 0; l < levels.size(); ++l) before_corrector(levels, l);
 }
 
 // Variable resolution after a step (docs/physics.md section 10): mass points, kind changes and
@@ -118,6 +133,45 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
     const Vec<D> dp = fluid_momentum(levels, mass) - p_before;
     if (mass > 0.0) add_to_fluid(levels, dp * (-1.0 / mass), true);
   }
+  return tally;
+}
+
+template <int D>
+Vec<D> LevelCoupling<D>::net_force(const std::vector<Level<D>>& levels, std::size_t l,
+                                   bool capillary) const {
+  Vec<D> f{};
+  const Level<D>& L = levels[l];
+  const bool st = opt_.zero_net_surface_force && capillary && L.sf.acc_st.size() == L.ps.size();
+  const bool coupling = wants_buffer_reaction();
+  for (std::size_t i = 0; i < L.ps.size(); ++i) {
+    if (coupling && L.ps.kind[i] == Kind::buffer) f -= L.ps.mass[i] * L.ps.acc[i];
+    if (st && L.ps.kind[i] == Kind::fluid) f += L.ps.mass[i] * L.sf.acc_st[i];
+  }
+  return f;
+}
+
+template <int D>
+void LevelCoupling<D>::remove_impulse(std::vector<Level<D>>& levels, const Vec<D>& impulse) const {
+  double mass = 0.0;
+  fluid_momentum(levels, mass);
+  if (mass > 0.0) add_to_fluid(levels, impulse * (-1.0 / mass), true);
+}
+
+template <int D>
+CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, std::size_t l,
+                                                 double dt, const std::vector<double>& donor_a,
+                                                 std::uint64_t& next_id,
+                                                 const std::function<void()>& sort) {
+  CouplingTally tally;
+  if (!multi_level()) return tally;
+  double mass = 0.0;
+  const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
+  accumulate_and_create_level(levels, links_[l], l, dt, donor_a, next_id, tally);
+  update_kinds(levels[l], links_[l], tally);
+  sort();
+  if (interpolate_buffers_level(levels, links_[l], l, tally, opt_.buffer_fill_min, donor_a) > 0)
+    sort();
+  if (opt_.conserve_momentum) remove_impulse(levels, fluid_momentum(levels, mass) - p_before);
   return tally;
 }
 

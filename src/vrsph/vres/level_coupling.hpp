@@ -40,22 +40,44 @@ class LevelCoupling {
   // donor level. After pass 2: the same for the normal.
   void after_surface_sums(std::vector<Level<D>>& levels) const;
   void after_normals(std::vector<Level<D>>& levels) const;
+  // The same for level l's buffers alone (local time stepping: a level's passes run on their own;
+  // the donors' fields are those of their last passes, held with their particles).
+  void after_surface_sums(std::vector<Level<D>>& levels, std::size_t l) const;
+  void after_normals(std::vector<Level<D>>& levels, std::size_t l) const;
   // After the pair forces: removes the net coupling force and/or net capillary force (capillary:
   // surface tension is on) as a uniform acceleration of the fluid.
   void after_forces(std::vector<Level<D>>& levels, bool capillary) const;
   // Before the corrector: the interface normal along which buffer particles are not shifted
   // (levels with shifting only).
   void before_corrector(std::vector<Level<D>>& levels) const;
+  void before_corrector(std::vector<Level<D>>& levels, std::size_t l) const;
   // After a step of dt (0: at start): mass points, kind changes, deletions and buffer values;
   // `sort` re-sorts every level (and counts what left the domain). Returns what was created and
   // deleted; new particles take ids from next_id.
   CouplingTally after_step(std::vector<Level<D>>& levels, double dt, std::uint64_t& next_id,
                            const std::function<void()>& sort);
 
+  // Local time stepping (sim/local_stepping.cpp).
+  // After a step of level l alone, of length dt: its mass points, kinds, deletions and buffer
+  // values, each donor level d read at the fraction donor_a[d] of its last step; `sort` re-sorts
+  // level l. With conserve_momentum the momentum jump is removed at once.
+  CouplingTally after_level_step(std::vector<Level<D>>& levels, std::size_t l, double dt,
+                                 const std::vector<double>& donor_a, std::uint64_t& next_id,
+                                 const std::function<void()>& sort);
+  // The net force that after_forces would remove, from level l alone: F_c of its buffers
+  // (conserve_momentum) plus F_st of its fluid (zero_net_force, when capillary).
+  Vec<D> net_force(const std::vector<Level<D>>& levels, std::size_t l, bool capillary) const;
+  // Removes an impulse (the sum of net_force x dt over the levels' corrector stages since the
+  // levels last met) as a uniform velocity of all fluid.
+  void remove_impulse(std::vector<Level<D>>& levels, const Vec<D>& impulse) const;
+  bool corrects_net_force(bool capillary) const {
+    return wants_buffer_reaction() || (opt_.zero_net_surface_force && capillary);
+  }
+
  private:
   template <class T>
-  void exchange_buffer_field(std::vector<Level<D>>& levels, std::vector<T> SurfaceFields<D>::*field,
-                             double reach_h) const;
+  void exchange_buffer_field(std::vector<Level<D>>& levels, std::size_t l,
+                             std::vector<T> SurfaceFields<D>::*field, double reach_h) const;
 
   std::vector<LevelLink<D>> links_;
   CouplingOptions opt_;

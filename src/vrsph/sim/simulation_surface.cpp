@@ -1,0 +1,130 @@
+// The surface-tension and shifting passes of a simulation (Simulation members): when they run
+// (every evaluation, or on the capillary refresh clock of sim/surface_refresh.hpp), on all levels
+// together (one global dt) or on one level (local time stepping), and the fields for outputs.
+#include <chrono>
+#include <limits>
+
+#include "vrsph/sim/simulation.hpp"
+#include "vrsph/solver/stepper.hpp"
+
+namespace vrsph {
+namespace {
+
+double now_seconds() {
+  using clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+// The capillary refresh: the interval is refresh_interval capillary limits of the level's own h
+// (local time stepping), or of the finest level (one clock for all levels: clock 0); every level
+// then holds its fields. With local time stepping the fields are held also when they are
+// refreshed at every evaluation: a level's buffers read the other levels' lambda and normal
+// between those levels' own passes.
+template <int D>
+void Simulation<D>::start_refresh_clocks() {
+  refresh_.assign(levels_.size(), RefreshClock());
+  const SurfaceTensionParams& st = spec_.numerics.surface_tension;
+  const bool sigma = spec_.fluid.surface_tension > 0.0;
+  if (sigma && local_)
+    for (Level<D>& L : levels_) L.sf.held = true;
+  if (!sigma || st.refresh != SurfaceRefresh::capillary) return;
+  double dt_min = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < levels_.size(); ++k) {
+    const SolverParams<D>& p = levels_[k].prm;
+    const double dt_st = capillary_dt(p.eos.rho0, p.h, p.sigma);
+    dt_min = std::min(dt_min, dt_st);
+    refresh_[k] = RefreshClock(st.refresh_interval * dt_st);
+    levels_[k].sf.held = true;
+  }
+  if (!local_) refresh_[0] = RefreshClock(st.refresh_interval * dt_min);
+}
+
+// The surface passes of every level, each pass on all levels before the next, so that the
+// coupling can give buffer particles lambda (after pass 1) and the normal (after pass 2) from the
+// other level before the next pass uses them. Passes 2 and 3 only when `capillary`.
+template <int D>
+void Simulation<D>::surface_passes(bool capillary) {
+  for (Level<D>& L : levels_) surface_pass_sums(L);
+  if (!capillary) return;
+  coupling_.after_surface_sums(levels_);
+  for (Level<D>& L : levels_) surface_pass_normals(L);
+  coupling_.after_normals(levels_);
+  for (Level<D>& L : levels_) surface_pass_curvature(L);
+}
+
+// The surface fields a force evaluation at t_eval needs. The capillary acceleration: at every
+// evaluation, or when the refresh clock says so (held in between). Pass 1 alone: at the
+// corrector's stage, for shifting's grad C and div r; the first stage's pass 1 would feed
+// nothing but passes 2 and 3.
+template <int D>
+void Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
+  if (!has_surface_fields()) return;
+  RefreshClock& clock = refresh_[0];  // one clock for all levels, as for dt
+  const bool capillary = levels_[0].prm.sigma > 0.0 && clock.due(t_eval, corrector_stage);
+  const bool shifting = levels_[0].prm.shifting.model != ShiftingModel::none;
+  if (!capillary && !(shifting && corrector_stage)) return;
+  const double t0 = now_seconds();
+  surface_passes(capillary);
+  if (capillary) {
+    clock.mark(t_eval);
+    ++times_.capillary_passes;
+  }
+  times_.surface += now_seconds() - t0;
+}
+
+// The surface fields of level k alone at t_eval (local time stepping): as surface_fields_all,
+// on the level's own clock; its buffers take lambda and the normal from the other levels' held
+// fields.
+template <int D>
+void Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corrector_stage) {
+  if (!has_surface_fields()) return;
+  Level<D>& L = levels_[k];
+  RefreshClock& clock = refresh_[k];
+  const bool capillary = L.prm.sigma > 0.0 && clock.due(t_eval, corrector_stage);
+  const bool shifting = L.prm.shifting.model != ShiftingModel::none;
+  if (!capillary && !(shifting && corrector_stage)) return;
+  const double t0 = now_seconds();
+  surface_pass_sums(L);
+  if (capillary) {
+    coupling_.after_surface_sums(levels_, k);
+    surface_pass_normals(L);
+    coupling_.after_normals(levels_, k);
+    surface_pass_curvature(L);
+    clock.mark(t_eval);
+    ++times_.capillary_passes;
+  }
+  times_.surface += now_seconds() - t0;
+}
+
+// Every surface field of every level for the current state (outputs). Held fields are swapped
+// out first, so that an output never changes the run.
+template <int D>
+void Simulation<D>::update_surface_fields() {
+  const double keep = times_.surface;  // output work, not stepping time
+  const bool hold = holds_surface_fields();
+  if (hold) {
+    output_sf_.resize(levels_.size());
+    for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
+  }
+  for (Level<D>& L : levels_) pack_level(L);
+  surface_passes(has_surface_fields() && levels_[0].prm.sigma > 0.0);
+  if (hold) {
+    for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
+  }
+  times_.surface = keep;
+}
+
+template void Simulation<2>::start_refresh_clocks();
+template void Simulation<3>::start_refresh_clocks();
+template void Simulation<2>::surface_passes(bool);
+template void Simulation<3>::surface_passes(bool);
+template void Simulation<2>::surface_fields_all(double, bool);
+template void Simulation<3>::surface_fields_all(double, bool);
+template void Simulation<2>::surface_fields_level(std::size_t, double, bool);
+template void Simulation<3>::surface_fields_level(std::size_t, double, bool);
+template void Simulation<2>::update_surface_fields();
+template void Simulation<3>::update_surface_fields();
+
+}  // namespace vrsph
