@@ -54,7 +54,47 @@ void Simulation<D>::start_local_stepping() {
   for (std::size_t k = 1; k < n; ++k)
     children_[static_cast<std::size_t>(coupling_.link(k).region.parent)].push_back(k);
   for (std::size_t k = 0; k < n; ++k) level_dt_[k] = level_dt_at_start(levels_[k], setup_.c0).dt;
-  dt_next_ = level_dt_[0];
+  dt_next_ = effective_dt(0);
+}
+
+// Steps a child takes in a parent step of dt: the smallest power of two that keeps each within
+// the child's effective dt (a little slack for the rounding of a power-of-two multiple of it).
+template <int D>
+std::uint64_t Simulation<D>::substeps(std::size_t c, double dt) const {
+  const double limit = effective_dt(c) * (1.0 + 1e-9);
+  std::uint64_t n = 1;
+  while (dt / static_cast<double>(n) > limit && n < kMaxSubsteps) n *= 2;
+  return n;
+}
+
+// Particle-steps per second of simulated time of level k's subtree when k steps with dt: the
+// cost model that chooses between step lengths below.
+template <int D>
+double Simulation<D>::subtree_rate(std::size_t k, double dt) const {
+  double r = static_cast<double>(levels_[k].ps.size()) / dt;
+  for (std::size_t c : children_[k]) {
+    const auto n = static_cast<double>(substeps(c, dt));
+    r += subtree_rate(c, dt / n);
+  }
+  return r;
+}
+
+// The step level k takes with its subtree: its own limit, or shorter, a power-of-two multiple
+// of a child's effective dt so that the child steps at exactly its limit, whichever costs less
+// per unit time (subtree_rate). With the own limit alone a child whose limit lies just below
+// half of its parent's would take quarter steps, twice as many as it needs.
+template <int D>
+double Simulation<D>::effective_dt(std::size_t k) const {
+  const double own = level_dt_[k];
+  double best = own, best_rate = children_[k].empty() ? 0.0 : subtree_rate(k, own);
+  for (std::size_t c : children_[k]) {
+    double fit = effective_dt(c);
+    if (!(fit > 0.0) || fit >= own) continue;
+    while (2.0 * fit <= own) fit *= 2.0;
+    const double rate = subtree_rate(k, fit);
+    if (rate < best_rate) best = fit, best_rate = rate;
+  }
+  return best;
 }
 
 template <int D>
@@ -79,7 +119,7 @@ void Simulation<D>::step_local(const StepPlan& plan) {
   t_ = t1;
   ++step_;
   dt_last_ = t1 - t0;
-  dt_next_ = level_dt_[0];
+  dt_next_ = effective_dt(0);
 }
 
 template <int D>
@@ -91,7 +131,8 @@ void Simulation<D>::advance_level(std::size_t k, double t0, double t1) {
   couple_level(k, t1 - t0, t1);
 }
 
-// Child c from t0 to t1 (its parent's step) in equal steps of a power-of-two fraction of it.
+// Child c from t0 to t1 (its parent's step) in equal steps of a power-of-two fraction of it,
+// halved again (the remaining time is a whole number of half steps) if its limit falls.
 template <int D>
 void Simulation<D>::cycle_child(std::size_t c, double t0, double t1) {
   const double span = t1 - t0;
@@ -99,10 +140,8 @@ void Simulation<D>::cycle_child(std::size_t c, double t0, double t1) {
   std::uint64_t j = 0;  // steps done
   double t = t0;
   while (j < n) {
-    while (span / static_cast<double>(n) > level_dt_[c] && n < kMaxSubsteps) {
-      n *= 2;
-      j *= 2;
-    }
+    const std::uint64_t need = substeps(c, span);
+    while (n < need) n *= 2, j *= 2;
     const double te =
         j + 1 == n ? t1 : t0 + static_cast<double>(j + 1) * (span / static_cast<double>(n));
     advance_level(c, t, te);

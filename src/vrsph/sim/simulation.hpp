@@ -177,6 +177,9 @@ class Simulation {
   void couple_level(std::size_t k, double dt, double t);
   std::vector<double> donor_fractions(double t) const;
   void check_level_dt(std::size_t k) const;
+  double effective_dt(std::size_t k) const;
+  double subtree_rate(std::size_t k, double dt) const;
+  std::uint64_t substeps(std::size_t c, double dt) const;
   DtChoice next_dt(const ForceStats& s) const;
   void couple_levels(double dt);
   StepPlan plan_step() const;
