@@ -130,7 +130,10 @@ TEST(WallForce, HydrostaticTankCarriesTheWeight) {
     const double weight = std::stod(c[cm]) * 9.81;
     const double fy = std::stod(c[cy]);
     EXPECT_NEAR(-fy / weight, 1.0, 0.05) << rows[k];
-    EXPECT_LT(std::abs(std::stod(c[cx])), 1e-9 * weight) << rows[k];
+    // The tank is symmetric, so the sideways push cancels to round-off: below 1e-9 of the
+    // weight in double; in the default mixed precision the pair terms are float and it reaches
+    // 7e-9 (measured on this case), hence 1e-7.
+    EXPECT_LT(std::abs(std::stod(c[cx])), 1e-7 * weight) << rows[k];
     sum += -fy / weight;
   }
   const double mean = sum / static_cast<double>(rows.size() - 2);

@@ -23,6 +23,18 @@ CaseSpec load_case(const std::string& path, const std::vector<std::string>& sets
   return parse_case(tbl, path);
 }
 
+// The resolved case of a run folder. vrsph writes numerics.precision there only when it is not
+// "double" (so that folders written before the key existed still resume), so a folder's case
+// without the key ran in double, whatever the default for case files.
+CaseSpec load_run_case(const std::string& path, const std::vector<std::string>& sets) {
+  toml::table tbl = load_case_table(path);
+  const toml::table* numerics = tbl["numerics"].as_table();
+  if (!(numerics && numerics->contains("precision")))
+    apply_override(tbl, "numerics.precision=\"double\"");
+  for (const std::string& s : sets) apply_override(tbl, s);
+  return parse_case(tbl, path);
+}
+
 // A case named on the command line: found from the current folder, or else among the shipped
 // data (data_dir.hpp), which is said in one line.
 CaseSpec load_given_case(const std::string& given, const std::vector<std::string>& sets) {
@@ -137,7 +149,7 @@ int run_command(const CliArgs& a) {
     ro.out_dir = a.resume_dir;
     const std::string path = (std::filesystem::path(a.resume_dir) / "case.toml").string();
     ro.origin = origin_of(a, path);
-    return run_case(load_case(path, a.sets), ro);
+    return run_case(load_run_case(path, a.sets), ro);
   }
   if (a.case_path.empty()) throw CaseError("run: a case file (or --resume DIR) is required");
   CaseSpec spec = load_given_case(a.case_path, a.sets);

@@ -90,8 +90,8 @@ struct FluidSpec {
 
 // [numerics]: the time step, one table per model (each the model's own struct) and the start.
 struct NumericsSpec {
-  double cfl = 0.2;                                   // CFL number of the time step (dimensionless)
-  Precision precision = Precision::double_precision;  // of the force pass (core/precision.hpp)
+  double cfl = 0.2;                        // CFL number of the time step (dimensionless)
+  Precision precision = Precision::mixed;  // of the force pass (core/precision.hpp)
   ViscosityParams viscosity;
   DiffusionParams density_diffusion;
   ShiftingParams shifting;

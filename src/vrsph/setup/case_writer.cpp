@@ -114,8 +114,9 @@ void write_numerics(Writer& w, const CaseSpec& s) {
   const NumericsSpec& n = s.numerics;
   w.header("[numerics]");
   w.kv("cfl", num(n.cfl));
-  // Written only when not the default, so that checkpoints made before the key existed (their
-  // physical keys lack it) still resume.
+  // Written only when not "double", so that checkpoints made before the key existed (their
+  // physical keys lack it) still resume: a run folder's case.toml without it ran in double
+  // (app/main.cpp, load_run_case), although "mixed" is the default of case files.
   if (n.precision != Precision::double_precision)
     w.kv("precision", toml_quote(enum_name(kArithmeticNames, n.precision)),
          "of the force pass: double | mixed");
