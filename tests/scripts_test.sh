@@ -59,6 +59,12 @@ is_png "$tmp/window.png" || fail "plot_window.sh wrote no PNG"
 "$root/scripts/compare_max_speed.sh" "$tmp/speed.png" "$out" "a" "$out" "b" > /dev/null \
   || fail "compare_max_speed.sh exited $?"
 is_png "$tmp/speed.png" || fail "compare_max_speed.sh wrote no PNG"
+"$root/scripts/compare_max_speed.sh" --column mass_fluid "$tmp/mass.png" "$out" "a" > /dev/null \
+  || fail "compare_max_speed.sh --column exited $?"
+is_png "$tmp/mass.png" || fail "compare_max_speed.sh --column wrote no PNG"
+if "$root/scripts/compare_max_speed.sh" --column no_such "$tmp/x.png" "$out" "a" 2> /dev/null; then
+  fail "compare_max_speed.sh accepted a column series.csv lacks"
+fi
 
 # laplace_window.sh against the column it summarises, over the whole run (at this spacing the line
 # can miss every interior particle: those outputs read nan and are left out).
