@@ -4,7 +4,7 @@
 # and write a PNG (checked by its signature) or the figures asked for; plot_run.sh's titles must
 # say what was drawn (both levels and their buffer particles; walls; rho0 g depth on the tank's
 # line; "parasitic currents" for the drop only); laplace_window.sh's mean must equal the mean of
-# series.csv's column. Without gnuplot the test is skipped (exit 77) with a message.
+# series.csv's column; probe_window.sh's figures on a probe file made up here. Without gnuplot the test is skipped (exit 77) with a message.
 #   tests/scripts_test.sh VRSPH_BINARY REPO_ROOT
 set -euo pipefail
 
@@ -75,5 +75,15 @@ want=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "laplace_rmse") r 
 [ "$got" = "$want" ] || fail "laplace_window.sh: n and mean '$got', series.csv gives '$want'"
 if "$root/scripts/laplace_window.sh" "$out" 1 2 2> /dev/null; then
   fail "laplace_window.sh accepted a window with no output"
+fi
+# probe_window.sh on a made-up probe file: dry at t = 0, then p = 10, 30, 20 Pa every 0.1 s.
+mkdir -p "$tmp/probe"
+printf 't,p,rho,vx,vy\n0,,,,\n0.1,10,1000,0,0\n0.2,30,1000,0,0\n0.3,20,1000,0,0\n' \
+  > "$tmp/probe/probe_wall.csv"
+got=$("$root/scripts/probe_window.sh" "$tmp/probe" wall 0 0.3)
+want="probe wall [0, 0.3]: wet 3 of 4, mean_p 20 Pa, max_p 30 Pa at t = 0.2, impulse 5 Pa s"  # 0.5 + 2 + 2.5
+[ "$got" = "$want" ] || fail "probe_window.sh printed '$got', expected '$want'"
+if "$root/scripts/probe_window.sh" "$tmp/probe" wall 1 2 2> /dev/null; then
+  fail "probe_window.sh accepted a window with no output"
 fi
 echo "scripts_test: all scripts ran"
