@@ -163,7 +163,7 @@ TEST(CliCheck, ListsTheParticlesOfEveryLevel) {
 TEST(CliCheck, ShippedCasesAreValid) {
   TempDir dir;
   for (const char* name : {"dam_break_2d.toml", "dam_break_3d.toml", "hydrostatic_2d.toml",
-                           "bench_dam_break_2d.toml"}) {
+                           "bench_dam_break_2d.toml", "dam_break_impact_vr_2d.toml"}) {
     const CmdResult r = dir.run({"check", (kCases / name).string()});
     EXPECT_EQ(r.status, 0) << r;
     EXPECT_NE(r.out.find(" fluid"), std::string::npos) << r;
