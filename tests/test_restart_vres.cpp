@@ -40,6 +40,24 @@ void expect_vr_drop_resumes(const std::vector<std::string>& sets) {
 
 TEST(Restart, HaltedVariableResolutionRunResumesToTheSameBytes) { expect_vr_drop_resumes({}); }
 
+// A folder whose case.toml has no refresh key (every_step runs, and every run made before the
+// key existed) resumes refreshing every step, although "capillary" is the default of case files,
+// and its case.toml still has no such key.
+TEST(Restart, FolderWithoutTheRefreshKeyResumesRefreshingEveryStep) {
+  const std::vector<std::string> every = {"--set",
+                                          "numerics.surface_tension.refresh=\"every_step\""};
+  expect_vr_drop_resumes(every);
+  TempDir dir;
+  const fs::path a = dir / "a";
+  ASSERT_EQ(dir.run(with({"run", (kCases / "droplet_2d.toml").string(), "--out", a.string(),
+                          "--quiet", "--set", "resolution.dp=2e-4", "--set", "case.end_time=0.001"},
+                         every))
+                .status,
+            0);
+  const std::string text = read_text(a / "case.toml");
+  EXPECT_EQ(text.find("refresh"), std::string::npos) << text;
+}
+
 // The halt falls between two refreshes (the resumed run must not refresh early), and with local
 // time stepping at a meeting of the levels, each with its own next dt.
 TEST(Restart, HaltedCapillaryRefreshAndLocalTimeSteppingRunsResumeToTheSameBytes) {

@@ -24,13 +24,17 @@ CaseSpec load_case(const std::string& path, const std::vector<std::string>& sets
 }
 
 // The resolved case of a run folder. vrsph writes numerics.precision there only when it is not
-// "double" (so that folders written before the key existed still resume), so a folder's case
-// without the key ran in double, whatever the default for case files.
+// "double", and numerics.surface_tension.refresh only when it is not "every_step" (so that
+// folders written before the keys existed still resume), so a folder's case without them ran
+// in double and refreshed every step, whatever the defaults for case files.
 CaseSpec load_run_case(const std::string& path, const std::vector<std::string>& sets) {
   toml::table tbl = load_case_table(path);
   const toml::table* numerics = tbl["numerics"].as_table();
   if (!(numerics && numerics->contains("precision")))
     apply_override(tbl, "numerics.precision=\"double\"");
+  const toml::table* st = numerics ? (*numerics)["surface_tension"].as_table() : nullptr;
+  if (st && !st->contains("refresh"))
+    apply_override(tbl, "numerics.surface_tension.refresh=\"every_step\"");
   for (const std::string& s : sets) apply_override(tbl, s);
   return parse_case(tbl, path);
 }

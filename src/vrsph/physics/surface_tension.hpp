@@ -34,7 +34,9 @@ struct SurfaceTensionParams {
   // How often passes 2 and 3 (normals, curvature, the capillary acceleration) run (not Cen):
   // every force evaluation, or once per refresh_interval x the capillary time-step limit
   // (solver/timestep.hpp), the acceleration held in between (sim/surface_refresh.hpp).
-  SurfaceRefresh refresh = SurfaceRefresh::every_step;
+  // "capillary" by default: on droplet_2d at dp 1e-4 and 5e-5 within 0.1% (mean interior) and
+  // 1% (RMSE) of "every_step", 1.4-1.6x faster (docs/validation.md, "Capillary refresh").
+  SurfaceRefresh refresh = SurfaceRefresh::capillary;
   // In capillary dt limits; "capillary" only. 0.1, below one acoustic step on the shipped drops,
   // refreshes at every corrector stage: the figures of every_step within 0.2%, 1.4x faster
   // (docs/validation.md, "Capillary refresh"); 0.5 and more let parasitic currents grow.

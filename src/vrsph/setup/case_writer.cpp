@@ -94,8 +94,9 @@ std::string shifting_table(const ShiftingParams& p) {
                      num(p.surface_threshold));
 }
 
-// The refresh keys are written only when not the default, so that checkpoints made before they
-// existed (their physical keys lack them) still resume.
+// The refresh keys are written only when not "every_step", so that checkpoints made before they
+// existed (their physical keys lack them) still resume: a run folder's case.toml without them
+// refreshed every step (app/main.cpp, load_run_case), although "capillary" is the default.
 std::string surface_tension_table(const SurfaceTensionParams& p) {
   const std::string refresh =
       p.refresh == SurfaceRefresh::every_step
