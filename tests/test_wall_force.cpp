@@ -96,7 +96,9 @@ TYPED_TEST(WallForceTest, IsMinusTheWallsForceOnTheFluid) {
       } else {
         on_walls += f[i];
       }
-      if (c.ps.kind[i] == Kind::fluid) EXPECT_EQ(norm(f[i]), 0.0);
+      if (c.ps.kind[i] == Kind::fluid) {
+        EXPECT_EQ(norm(f[i]), 0.0);
+      }
     }
     // Fluid-fluid pairs cancel in on_fluid: what is left is the walls' push.
     ASSERT_GT(norm(on_walls), 1e-3 * scale) << "the walls feel a force";
