@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "vrsph/driver/data_dir.hpp"
@@ -16,27 +17,37 @@ namespace {
 
 using namespace vrsph;
 
-// Reads a case file, applies the --set overrides in order and validates it.
-CaseSpec load_case(const std::string& path, const std::vector<std::string>& sets) {
-  toml::table tbl = load_case_table(path);
+// Applies the --set overrides in order to a case table and validates it.
+CaseSpec parse_with_sets(toml::table tbl, const std::string& path,
+                         const std::vector<std::string>& sets) {
   for (const std::string& s : sets) apply_override(tbl, s);
   return parse_case(tbl, path);
 }
 
-// The resolved case of a run folder. vrsph writes numerics.precision there only when it is not
-// "double", and numerics.surface_tension.refresh only when it is not "every_step" (so that
-// folders written before the keys existed still resume), so a folder's case without them ran
-// in double and refreshed every step, whatever the defaults for case files.
+// Reads a case file, applies the --set overrides in order and validates it.
+CaseSpec load_case(const std::string& path, const std::vector<std::string>& sets) {
+  return parse_with_sets(load_case_table(path), path, sets);
+}
+
+// Keys vrsph writes into a run folder's case.toml only when they differ from the value runs had
+// before the key existed (so that older folders still resume): a folder's case without one ran
+// with that value, whatever the default for case files.
+struct LegacyDefault {
+  const char* key;       // dotted path
+  const char* override;  // the --set line that restores the value
+};
+constexpr LegacyDefault kLegacyDefaults[] = {
+    {"numerics.precision", "numerics.precision=\"double\""},
+    {"numerics.surface_tension.refresh", "numerics.surface_tension.refresh=\"every_step\""},
+};
+
+// The resolved case of a run folder: its case.toml with the legacy values of the keys it lacks,
+// then the --set overrides.
 CaseSpec load_run_case(const std::string& path, const std::vector<std::string>& sets) {
   toml::table tbl = load_case_table(path);
-  const toml::table* numerics = tbl["numerics"].as_table();
-  if (!(numerics && numerics->contains("precision")))
-    apply_override(tbl, "numerics.precision=\"double\"");
-  const toml::table* st = numerics ? (*numerics)["surface_tension"].as_table() : nullptr;
-  if (st && !st->contains("refresh"))
-    apply_override(tbl, "numerics.surface_tension.refresh=\"every_step\"");
-  for (const std::string& s : sets) apply_override(tbl, s);
-  return parse_case(tbl, path);
+  for (const LegacyDefault& d : kLegacyDefaults)
+    if (!tbl.at_path(d.key)) apply_override(tbl, d.override);
+  return parse_with_sets(std::move(tbl), path, sets);
 }
 
 // A case named on the command line: found from the current folder, or else among the shipped
