@@ -90,6 +90,16 @@ struct ParticleSet {
     for_each_field([n](std::string_view, auto& v, FieldRole) { v.resize(n); });
   }
 
+  void reserve(std::size_t n) {
+    for_each_field([n](std::string_view, auto& v, FieldRole) { v.reserve(n); });
+  }
+  // Gives back the capacity beyond the size (after a cut of a larger fill): one array at a
+  // time, so the copy costs one array's size more than the set.
+  void shrink_to_fit() {
+    for_each_field([](std::string_view, auto& v, FieldRole) { v.shrink_to_fit(); });
+  }
+
+  // One particle more (set-up: reserve first, or every array may end with twice its size).
   void push_back(std::uint64_t id_, Kind k, const Vec<D>& x, const Vec<D>& v, double rho_,
                  double m) {
     const std::size_t n = size();

@@ -123,6 +123,7 @@ ParticleSet<D> level_particles(const CaseSpec& spec, const LevelLayout<D>& lay,
     all.id[i] = id++;
   }
   all.compact(keep);
+  all.shrink_to_fit();  // a refined level keeps a small part of its fill
   if (wall_ids != nullptr) *wall_ids = std::move(ranges);
   return std::move(all);
 }
