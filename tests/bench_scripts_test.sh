@@ -45,4 +45,21 @@ VRSPH=$vrsph "$root/scripts/bench_scaling.sh" "$root/cases/bench_dam_break_2d.to
   fail "bench_scaling.sh exited $?: $(cat "$tmp/scaling.log")"
 [ "$(wc -l < "$tmp/scaling/scaling.csv")" -eq 3 ] || fail "scaling.csv: $(cat "$tmp/scaling/scaling.csv")"
 awk -F, 'NR == 2 && $7 != "1.000" { exit 1 }' "$tmp/scaling/scaling.csv" || fail "first row not 1"
-echo "bench_scripts_test: ok ($line)"
+# bench_rounds.sh: two configurations, two rounds; the ratio line must be the median of the
+# per-round ratios of the walls in the JSON files, and a ratio naming no configuration refused.
+small="$root/cases/bench_dam_break_2d.toml --time 0.0002 --threads 1"
+"$root/scripts/bench_rounds.sh" --vrsph "$vrsph" --runs 2 --out "$tmp/rounds" \
+  a="$small" b="@$vrsph $small --set numerics.precision=\"double\"" > "$tmp/rounds.log" 2>&1 ||
+  fail "bench_rounds.sh exited $?: $(cat "$tmp/rounds.log")"
+rline=$(grep '^ratio b/a: median' "$tmp/rounds.log") || fail "no ratio line: $(cat "$tmp/rounds.log")"
+want=$(python3 -c "
+import json
+w = lambda n: json.load(open('$tmp/rounds/' + n + '.json'))['wall_seconds']
+r = sorted(w('b-%d' % k) / w('a-%d' % k) for k in (1, 2))
+print('%.4f' % r[0], '%.4f' % r[1])")
+got=$(echo "$rline" | sed 's/.*(rounds: \(.*\))/\1/' | tr ' ' '\n' | sort -g | xargs)
+[ "$got" = "$want" ] || fail "per-round ratios: got '$got', want '$want' ($rline)"
+if "$root/scripts/bench_rounds.sh" --vrsph "$vrsph" --ratio a/zz a="$small" \
+  > "$tmp/bad3.log" 2>&1; then fail "--ratio a/zz accepted"; fi
+grep -q "no configuration 'zz'" "$tmp/bad3.log" || fail "bad message: $(cat "$tmp/bad3.log")"
+echo "bench_scripts_test: ok ($line; $rline)"
