@@ -11,28 +11,38 @@
 
 namespace vrsph {
 
-template <int D>
+// T: the element type (float for the mixed precision's pair terms; the rest is double).
+template <int D, class T = double>
 struct Mat {
-  std::array<std::array<double, D>, D> a{};  // a[row][col]
+  std::array<std::array<T, D>, D> a{};  // a[row][col]
 
   static Mat identity() {
     Mat m;
-    for (int k = 0; k < D; ++k) m.a[k][k] = 1.0;
+    for (int k = 0; k < D; ++k) m.a[k][k] = T(1);
     return m;
   }
-  double operator()(int r, int c) const { return a[r][c]; }
-  double& operator()(int r, int c) { return a[r][c]; }
+  T operator()(int r, int c) const { return a[r][c]; }
+  T& operator()(int r, int c) { return a[r][c]; }
 };
 
-template <int D>
-inline Vec<D> operator*(const Mat<D>& m, const Vec<D>& v) {
-  Vec<D> out;
+template <int D, class T>
+inline Vec<D, T> operator*(const Mat<D, T>& m, const Vec<D, T>& v) {
+  Vec<D, T> out;
   for (int r = 0; r < D; ++r) {
-    double s = 0.0;
+    T s = 0;
     for (int c = 0; c < D; ++c) s += m.a[r][c] * v[c];
     out[r] = s;
   }
   return out;
+}
+
+// The same matrix in element type U.
+template <class U, int D, class T>
+inline Mat<D, U> mat_cast(const Mat<D, T>& m) {
+  Mat<D, U> r;
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) r.a[i][j] = static_cast<U>(m.a[i][j]);
+  return r;
 }
 
 template <int D>

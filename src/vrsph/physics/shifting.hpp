@@ -38,8 +38,14 @@ inline ShiftingLevel shifting_level(const ShiftingParams& p, double h, double dp
 
 // Pair contributions of the two sums, with vol_f = V_j F (grad_i W_ij = F r_ij):
 // grad C_i += V_j F r_ij (component r_a of r_ij), div r_i += -V_j F r^2.
-inline double colour_gradient_pair(double vol_f, double r_a) { return vol_f * r_a; }
-inline double position_divergence_pair(double vol_f, double r2) { return -vol_f * r2; }
+template <class T>
+inline T colour_gradient_pair(T vol_f, T r_a) {
+  return vol_f * r_a;
+}
+template <class T>
+inline T position_divergence_pair(T vol_f, T r2) {
+  return -vol_f * r2;
+}
 
 template <int D>
 inline Vec<D> shifting_displacement(const ShiftingLevel& s, const Vec<D>& grad_c, double div_r,

@@ -47,14 +47,20 @@ struct SurfaceTensionParams {
 
 // Pair contributions of step 1, vol_f = V_j F (grad_i W_ij = F r_ij): the entry (a, b) of M_i,
 // V_j (r_j - r_i)_a (grad_i W_ij)_b = -V_j F r_a r_b, and the Shepard sum V_j W_ij of phi_i.
-inline double correction_matrix_pair(double vol_f, double r_a, double r_b) {
+// T: double, or float in the mixed precision's pair loops (core/precision.hpp).
+template <class T>
+inline T correction_matrix_pair(T vol_f, T r_a, T r_b) {
   return -vol_f * r_a * r_b;
 }
-inline double shepard_pair(double vol_j, double w) { return vol_j * w; }
+template <class T>
+inline T shepard_pair(T vol_j, T w) {
+  return vol_j * w;
+}
 
 // Pair contribution of step 2: the factor of r_ij in (lambda_j - lambda_ref) V_j grad_i W_ij, with
 // lambda_ref = lambda_i (difference form, lambda_i >= 0.7) or 0.
-inline double lambda_gradient_pair(double lambda_j, double lambda_ref, double vol_j, double f) {
+template <class T>
+inline T lambda_gradient_pair(T lambda_j, T lambda_ref, T vol_j, T f) {
   return (lambda_j - lambda_ref) * vol_j * f;
 }
 
@@ -85,9 +91,9 @@ constexpr double curvature_filter_cos() {
 
 // S_ij of step 3: both normals non-zero and n_i . n_j >= cos(alpha_t) (n_i is checked by the
 // caller). Written as a value, not a branch, for the vector loop.
-template <int D>
-inline bool curvature_filter(double n_j_norm2, double ni_dot_nj) {
-  return (n_j_norm2 != 0.0) & (ni_dot_nj >= curvature_filter_cos<D>());
+template <int D, class T>
+inline bool curvature_filter(T n_j_norm2, T ni_dot_nj) {
+  return (n_j_norm2 != T(0)) & (ni_dot_nj >= T(curvature_filter_cos<D>()));
 }
 
 // Surface delta of the single-phase colour function: 2 max(1, phi) |grad C|, phi = 1/(2 shepard).
@@ -120,17 +126,19 @@ inline double curvature_at_surface(double kappa, double dp) {
 // The corrected curvature is (D - 1) u from the root u = 2 kappa / (a + sqrt(a^2 + 4 b kappa)),
 // kept uncorrected where a < (D - 1)/4 (too few neighbours with normals) or the root is complex.
 // docs/validation.md ("Figures formerly in code comments") records its effect on a static circle.
-struct CurvatureSums {
-  double kappa = 0.0, a = 0.0, b = 0.0;
+template <class T = double>
+struct CurvatureSumsT {
+  T kappa = 0, a = 0, b = 0;
 };
+using CurvatureSums = CurvatureSumsT<double>;
 
-template <int D>
-inline void add_curvature_pair(CurvatureSums& s, double v_j, const Vec<D>& n_i, const Vec<D>& n_j,
-                               const Vec<D>& d_j, const Vec<D>& g_ij) {
+template <int D, class T>
+inline void add_curvature_pair(CurvatureSumsT<T>& s, T v_j, const Vec<D, T>& n_i,
+                               const Vec<D, T>& n_j, const Vec<D, T>& d_j, const Vec<D, T>& g_ij) {
   s.kappa += v_j * dot(n_j - n_i, g_ij);
-  const double de = dot(d_j, n_i), dg = dot(d_j, g_ij), eg = dot(n_i, g_ij);
+  const T de = dot(d_j, n_i), dg = dot(d_j, g_ij), eg = dot(n_i, g_ij);
   s.a += v_j * (dg - de * eg);
-  s.b += v_j * (1.5 * de * de * eg - de * dg - 0.5 * norm2(d_j) * eg);
+  s.b += v_j * (T(1.5) * de * de * eg - de * dg - T(0.5) * norm2(d_j) * eg);
 }
 
 template <int D>

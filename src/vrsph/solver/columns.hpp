@@ -26,14 +26,18 @@ struct LevelColumns {
     std::vector<float> rho_dev, p, vol, mass, wall_vol;
   } f;
 
-  // Positions and volumes only (the surface passes' needs), from a read-only particle set.
-  void pack_geometry(const ParticleSet<D>& ps) {
+  // Positions and volumes only (the surface passes' needs), from a read-only particle set; in
+  // mixed precision the volumes in float too.
+  void pack_geometry(const ParticleSet<D>& ps, Precision precision = Precision::double_precision) {
     const std::size_t n = ps.size();
     for (int k = 0; k < D; ++k) x[k].resize(n);
     vol.resize(n);
+    const bool floats = precision == Precision::mixed;
+    if (floats) f.vol.resize(n);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       for (int k = 0; k < D; ++k) x[k][i] = ps.pos[i][k];
       vol[i] = ps.mass[i] / ps.rho[i];
+      if (floats) f.vol[i] = static_cast<float>(vol[i]);
     });
   }
 

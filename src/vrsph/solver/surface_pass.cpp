@@ -1,6 +1,7 @@
 #include "vrsph/solver/surface_pass.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/exec/sweep.hpp"
@@ -55,31 +56,62 @@ namespace {
 
 constexpr int kChunk = 256;  // particles handed to a thread at a time
 
-// Source columns: positions, then `extra` (volume, lambda, normal components, ...).
-template <int D, int K>
-std::array<const double*, K> sources(const LevelColumns<D>& c,
-                                     std::array<const double*, K - D> extra) {
-  std::array<const double*, K> s{};
-  for (int k = 0; k < D; ++k) s[k] = c.x[k].data();
-  for (int k = 0; k < K - D; ++k) s[D + k] = extra[k];
-  return s;
+// The blocks of a surface pass in arithmetic type T (core/precision.hpp): the positions (D
+// columns), the pass's N other columns (volume, lambda, normal components), and in float the
+// positions' low parts (D columns, particles/candidate_block.hpp).
+template <int D, int N, class T>
+struct SurfaceBlock {
+  static constexpr bool kFloat = std::is_same_v<T, float>;
+  static constexpr int K = D + N + (kFloat ? D : 0);
+  static constexpr int KL = kFloat ? D + N : -1;  // first low-part column, or none
+  using Block = CandidateBlock<K, T>;
+
+  std::array<const double*, K> pos{};  // the positions (and in double every column)
+  std::array<const T*, K> rest{};      // the other columns in float
+  std::array<double, K> pad = position_pad<K, D>();
+
+  SurfaceBlock(const LevelColumns<D>& c, std::array<const T*, N> extra) {
+    for (int k = 0; k < D; ++k) pos[k] = c.x[k].data();
+    for (int k = 0; k < N; ++k) {
+      if constexpr (kFloat)
+        rest[D + k] = extra[k];
+      else
+        pos[D + k] = extra[k];
+    }
+  }
+  void gather(Block& blk, const CellGrid<D>& grid, std::int64_t cell, Groups g) const {
+    blk.gather(pos, pad, grid, cell, g, kFloat ? &rest : nullptr);
+  }
+};
+
+// x_i in block blk's frame, as hi + lo (lo unused in double).
+template <int D, class Block, class T>
+void frame_of(const LevelColumns<D>& c, std::size_t i, const Block& blk, T (&hi)[3], T (&lo)[3]) {
+  double x[3] = {0, 0, 0};
+  for (int d = 0; d < D; ++d) x[d] = c.x[d][i];
+  blk.frame(x, hi, lo);
 }
 
-template <int D>
-void position_of(const LevelColumns<D>& c, std::size_t i, double xi[3]) {
-  for (int d = 0; d < D; ++d) xi[d] = c.x[d][i];
+// The volume column of the blocks: the level's float copy in mixed precision.
+template <class T, int D>
+const T* volume_column(const LevelColumns<D>& c) {
+  if constexpr (std::is_same_v<T, float>)
+    return c.f.vol.data();
+  else
+    return c.vol.data();
 }
 
 // Pass 1 of particle i over its block (columns x, V): M in s0..s2 (xx, xy, yy), grad C in s3, s4,
 // div r in s5, the Shepard sum in s6 and, in 3D only, M in s7..s9 (xz, yz, zz) and grad C in s10
 // (2D sums no zeros).
-template <int D>
-void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk,
-                    const double xi[3], double (&sum)[12]) {
-  auto pair = [](const PairGeometry& g, const Neighbour<D + 1>& nb) {
-    PairSums s;
-    const double vol_j = nb[D];
-    const double vf = vol_j * g.f;
+template <int D, class T>
+void pass1_particle(const SolverParams<D>& prm, const typename SurfaceBlock<D, 1, T>::Block& blk,
+                    const T (&xi)[3], const T (&xi_lo)[3], double (&sum)[12]) {
+  using S = SurfaceBlock<D, 1, T>;
+  auto pair = [](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
+    PairSumsT<T> s;
+    const T vol_j = nb[D];
+    const T vf = vol_j * g.f;
     s.s0 = correction_matrix_pair(vf, g.rx, g.rx);
     s.s1 = correction_matrix_pair(vf, g.rx, g.ry);
     s.s2 = correction_matrix_pair(vf, g.ry, g.ry);
@@ -96,8 +128,8 @@ void pass1_particle(const SolverParams<D>& prm, const CandidateBlock<D + 1>& blk
     return s;
   };
   double unused = -1e300;
-  sweep_pairs<D, D + 1, D == 3 ? 11 : 7, false>(
-      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum, unused);
+  sweep_pairs<D, S::K, D == 3 ? 11 : 7, false, S::KL>(
+      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum, unused, xi_lo);
 }
 
 // M_i and grad C_i from the pass-1 slots.
@@ -111,24 +143,21 @@ void assemble_pass1(const double (&s)[12], Mat<D>& m, Vec<D>& grad_c) {
   }
 }
 
-}  // namespace
-
-template <int D>
-void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
-                  const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
+template <int D, class T>
+void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+               const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
   sf.resize(ps.size());
-  using Block = CandidateBlock<D + 1>;
-  const auto src = sources<D, D + 1>(cols, {cols.vol.data()});
-  const auto pad = position_pad<D + 1, D>();
+  using S = SurfaceBlock<D, 1, T>;
+  const S src(cols, {volume_column<T>(cols)});
   const double w0 = prm.kernel.w(0.0);
-  auto body = [&](std::int64_t ii, Block& blk) {
+  auto body = [&](std::int64_t ii, typename S::Block& blk) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
-    double xi[3] = {0, 0, 0};
-    position_of(cols, i, xi);
     double s[12] = {};
-    blk.gather(src, pad, grid, grid.particle_cells()[i], Groups::all);
-    pass1_particle<D>(prm, blk, xi, s);
+    src.gather(blk, grid, grid.particle_cells()[i], Groups::all);
+    T xi[3], xi_lo[3];
+    frame_of(cols, i, blk, xi, xi_lo);
+    pass1_particle<D, T>(prm, blk, xi, xi_lo, s);
     Mat<D> m;
     Vec<D> grad_c;
     assemble_pass1<D>(s, m, grad_c);
@@ -139,104 +168,110 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     sf.div_r[i] = s[5];
     sf.shepard[i] = shepard_pair(cols.vol[i], w0) + s[6];  // self term + neighbours
   };
-  exec::for_each_with<Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
+  exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
 
-template <int D>
-void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
-                  SurfaceFields<D>& sf) {
-  sf.own.pack_geometry(ps);
-  surface_sums(prm, ps, grid, sf.own, sf);
-}
-
-template <int D>
-void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
-                     const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
+template <int D, class T>
+void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                  const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
   sf.normal.assign(ps.size(), Vec<D>{});  // walls keep 0
-  using Block = CandidateBlock<D + 2>;
-  const auto src = sources<D, D + 2>(cols, {cols.vol.data(), sf.lambda.data()});
-  const auto pad = position_pad<D + 2, D>();
-  auto body = [&](std::int64_t ii, Block& blk) {
+  const T* lambda_col = nullptr;
+  if constexpr (std::is_same_v<T, float>) {
+    sf.lambda_f.resize(ps.size());  // after the coupling has set the buffers' lambda
+    exec::for_each(static_cast<std::int64_t>(ps.size()),
+                   [&](std::int64_t i) { sf.lambda_f[i] = static_cast<float>(sf.lambda[i]); });
+    lambda_col = sf.lambda_f.data();
+  } else {
+    lambda_col = sf.lambda.data();
+  }
+  using S = SurfaceBlock<D, 2, T>;
+  const S src(cols, {volume_column<T>(cols), lambda_col});
+  auto body = [&](std::int64_t ii, typename S::Block& blk) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
     const double lambda_i = sf.lambda[i];
-    const double lambda_ref =
-        lambda_i >= prm.surface_tension.lambda_threshold ? lambda_i : 0.0;  // difference form
-    double xi[3] = {0, 0, 0};
-    position_of(cols, i, xi);
-    blk.gather(src, pad, grid, grid.particle_cells()[i], Groups::fluid);
+    const T lambda_ref = static_cast<T>(
+        lambda_i >= prm.surface_tension.lambda_threshold ? lambda_i : 0.0);  // difference form
+    src.gather(blk, grid, grid.particle_cells()[i], Groups::fluid);
+    T xi[3], xi_lo[3];
+    frame_of(cols, i, blk, xi, xi_lo);
     double s[12] = {}, unused = -1e300;
-    auto pair = [=](const PairGeometry& g, const Neighbour<D + 2>& nb) {
-      PairSums a;
-      const double c = lambda_gradient_pair(nb[D + 1], lambda_ref, nb[D], g.f);
+    auto pair = [=](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
+      PairSumsT<T> a;
+      const T c = lambda_gradient_pair(nb[D + 1], lambda_ref, nb[D], g.f);
       a.s0 = c * g.rx, a.s1 = c * g.ry;
       if constexpr (D == 3) a.s2 = c * g.rz;
       return a;
     };
-    sweep_pairs<D, D + 2, D, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
-                                    pair, s, unused);
+    sweep_pairs<D, S::K, D, false, S::KL>(
+        prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused, xi_lo);
     Vec<D> sum;
     for (int d = 0; d < D; ++d) sum[d] = s[d];
     sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i,
                                                   prm.surface_tension.normal_epsilon, prm.h);
   };
-  exec::for_each_with<Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
+  exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
-
-namespace {
 
 // Pass 3 of particle i over its block (columns x, V, n): the curvature sums of
 // physics/surface_tension.hpp (kappa, a, b in s0..s2) over the neighbours that pass S_ij.
-template <int D>
-CurvatureSums curvature_particle(const SolverParams<D>& prm, const CandidateBlock<2 * D + 1>& blk,
-                                 const double xi[3], const Vec<D>& n_i, const Mat<D>& l_i) {
-  auto pair = [=](const PairGeometry& g, const Neighbour<2 * D + 1>& nb) {
-    PairSums s;
-    Vec<D> n_j, r_ij;
+template <int D, class T>
+CurvatureSums curvature_particle(const SolverParams<D>& prm,
+                                 const typename SurfaceBlock<D, D + 1, T>::Block& blk,
+                                 const T (&xi)[3], const T (&xi_lo)[3], const Vec<D, T>& n_i,
+                                 const Mat<D, T>& l_i) {
+  using S = SurfaceBlock<D, D + 1, T>;
+  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
+    PairSumsT<T> s;
+    Vec<D, T> n_j, r_ij;
     n_j[0] = nb[D + 1], n_j[1] = nb[D + 2], r_ij[0] = g.rx, r_ij[1] = g.ry;
     if constexpr (D == 3) n_j[2] = nb[2 * D], r_ij[2] = g.rz;
-    const double vol_j = nb[D];
+    const T vol_j = nb[D];
     const bool s_ij = curvature_filter<D>(norm2(n_j), dot(n_i, n_j));
-    CurvatureSums c;
-    add_curvature_pair<D>(c, s_ij ? vol_j : 0.0, n_i, n_j, -1.0 * r_ij, l_i * (g.f * r_ij));
+    CurvatureSumsT<T> c;
+    add_curvature_pair<D>(c, s_ij ? vol_j : T(0), n_i, n_j, T(-1) * r_ij, l_i * (g.f * r_ij));
     s.s0 = c.kappa, s.s1 = c.a, s.s2 = c.b;
     return s;
   };
   double s[12] = {}, unused = -1e300;
-  sweep_pairs<D, 2 * D + 1, 3, false>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
-                                      pair, s, unused);
+  sweep_pairs<D, S::K, 3, false, S::KL>(
+      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused, xi_lo);
   return CurvatureSums{s[0], s[1], s[2]};
 }
 
-}  // namespace
-
-template <int D>
-void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
-                             const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                             SurfaceFields<D>& sf) {
+template <int D, class T>
+void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                    const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
   const auto n = static_cast<std::int64_t>(ps.size());
   sf.curvature.resize(ps.size());  // every entry written below
   sf.acc_st.resize(ps.size());
-  for (int k = 0; k < D; ++k) sf.normal_col[k].resize(ps.size());
+  auto& normal_col = [&]() -> auto& {
+    if constexpr (std::is_same_v<T, float>)
+      return sf.normal_f;
+    else
+      return sf.normal_col;
+  }
+  ();
+  for (int k = 0; k < D; ++k) normal_col[k].resize(ps.size());
   exec::for_each(n, [&](std::int64_t i) {
-    for (int k = 0; k < D; ++k) sf.normal_col[k][i] = sf.normal[i][k];
+    for (int k = 0; k < D; ++k) normal_col[k][i] = static_cast<T>(sf.normal[i][k]);
   });
-  using Block = CandidateBlock<2 * D + 1>;
-  std::array<const double*, D + 1> extra{};
-  extra[0] = cols.vol.data();
-  for (int k = 0; k < D; ++k) extra[k + 1] = sf.normal_col[k].data();
-  const auto src = sources<D, 2 * D + 1>(cols, extra);
-  const auto pad = position_pad<2 * D + 1, D>();
-  auto body = [&](std::int64_t ii, Block& blk) {
+  using S = SurfaceBlock<D, D + 1, T>;
+  std::array<const T*, D + 1> extra{};
+  extra[0] = volume_column<T>(cols);
+  for (int k = 0; k < D; ++k) extra[k + 1] = normal_col[k].data();
+  const S src(cols, extra);
+  auto body = [&](std::int64_t ii, typename S::Block& blk) {
     const auto i = static_cast<std::size_t>(ii);
     sf.curvature[i] = 0.0;
     sf.acc_st[i] = Vec<D>{};
     const Vec<D> n_i = sf.normal[i];
     if (ps.kind[i] == Kind::wall || norm2(n_i) == 0.0) return;
-    double xi[3] = {0, 0, 0};
-    position_of(cols, i, xi);
-    blk.gather(src, pad, grid, grid.particle_cells()[i], Groups::fluid);
-    const CurvatureSums sums = curvature_particle<D>(prm, blk, xi, n_i, sf.l_corr[i]);
+    src.gather(blk, grid, grid.particle_cells()[i], Groups::fluid);
+    T xi[3], xi_lo[3];
+    frame_of(cols, i, blk, xi, xi_lo);
+    const CurvatureSums sums =
+        curvature_particle<D, T>(prm, blk, xi, xi_lo, vec_cast<T>(n_i), mat_cast<T>(sf.l_corr[i]));
     const SurfaceTensionParams& st = prm.surface_tension;
     const double kappa = st.curvature_correction ? corrected_curvature<D>(sums) : sums.kappa;
     sf.curvature[i] = kappa;
@@ -244,7 +279,44 @@ void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& p
     const double k_force = st.surface_offset ? curvature_at_surface<D>(kappa, prm.dp) : kappa;
     sf.acc_st[i] = csf_acceleration<D>(prm.sigma, k_force, n_i, delta, ps.rho[i]);
   };
-  exec::for_each_with<Block>(n, kChunk, body);
+  exec::for_each_with<typename S::Block>(n, kChunk, body);
+}
+
+}  // namespace
+
+template <int D>
+void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                  const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
+  if (prm.precision == Precision::mixed)
+    sums_pass<D, float>(prm, ps, grid, cols, sf);
+  else
+    sums_pass<D, double>(prm, ps, grid, cols, sf);
+}
+
+template <int D>
+void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                  SurfaceFields<D>& sf) {
+  sf.own.pack_geometry(ps, prm.precision);
+  surface_sums(prm, ps, grid, sf.own, sf);
+}
+
+template <int D>
+void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                     const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
+  if (prm.precision == Precision::mixed)
+    normals_pass<D, float>(prm, ps, grid, cols, sf);
+  else
+    normals_pass<D, double>(prm, ps, grid, cols, sf);
+}
+
+template <int D>
+void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                             const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                             SurfaceFields<D>& sf) {
+  if (prm.precision == Precision::mixed)
+    curvature_pass<D, float>(prm, ps, grid, cols, sf);
+  else
+    curvature_pass<D, double>(prm, ps, grid, cols, sf);
 }
 
 template <int D>

@@ -31,6 +31,10 @@ struct SurfaceFields {
   // four-argument surface_sums), and the normal as columns for the curvature pass's blocks.
   LevelColumns<D> own;
   std::array<std::vector<double>, D> normal_col;
+  // The same in float for the blocks of the mixed precision (core/precision.hpp): lambda for
+  // pass 2 and the normal for pass 3 (pass 1 reads the level's float volumes).
+  std::vector<float> lambda_f;
+  std::array<std::vector<float>, D> normal_f;
 
   // Sizes the arrays pass 1 writes, and sizes the others without touching their values (a pass 1
   // alone leaves what passes 2 and 3 wrote).
