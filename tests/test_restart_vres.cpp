@@ -58,6 +58,23 @@ TEST(Restart, FolderWithoutTheRefreshKeyResumesRefreshingEveryStep) {
   EXPECT_EQ(text.find("refresh"), std::string::npos) << text;
 }
 
+// A folder whose case.toml has no numerics.precision (double runs, and every run made before the
+// key existed) resumes in double to the bytes of the uninterrupted double run, although "mixed"
+// is the default of case files; a mixed run's folder names the key.
+TEST(Restart, FolderWithoutThePrecisionKeyResumesInDouble) {
+  const std::vector<std::string> dbl = {"--set", "numerics.precision=\"double\""};
+  expect_vr_drop_resumes(dbl);
+  TempDir dir;
+  const fs::path d = dir / "d", m = dir / "m";
+  const std::vector<std::string> small = {"--quiet", "--set", "resolution.dp=2e-4", "--set",
+                                          "case.end_time=0.001"};
+  const std::string drop = (kCases / "droplet_2d.toml").string();
+  ASSERT_EQ(dir.run(with(with({"run", drop, "--out", d.string()}, small), dbl)).status, 0);
+  ASSERT_EQ(dir.run(with({"run", drop, "--out", m.string()}, small)).status, 0);
+  EXPECT_EQ(read_text(d / "case.toml").find("precision = \"mixed\""), std::string::npos);
+  EXPECT_NE(read_text(m / "case.toml").find("precision = \"mixed\""), std::string::npos);
+}
+
 // The halt falls between two refreshes (the resumed run must not refresh early), and with local
 // time stepping at a meeting of the levels, each with its own next dt.
 TEST(Restart, HaltedCapillaryRefreshAndLocalTimeSteppingRunsResumeToTheSameBytes) {

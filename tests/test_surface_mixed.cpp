@@ -86,8 +86,8 @@ void check_mixed_against_double(const std::vector<Vec<D>>& pos, double dp) {
       "[ surface mixed %dD ] %zu particles, %zu / %zu with a normal; largest relative "
       "differences: lambda %.1e, grad C %.1e, div r %.1e, Shepard %.1e, normal %.1e, "
       "curvature %.1e, a_st %.1e\n",
-      D, pos.size(), d.with_normal, m.with_normal, e_lambda, e_grad_c, e_div_r, e_shepard,
-      e_normal, e_kappa, e_acc);
+      D, pos.size(), d.with_normal, m.with_normal, e_lambda, e_grad_c, e_div_r, e_shepard, e_normal,
+      e_kappa, e_acc);
   EXPECT_EQ(d.with_normal, m.with_normal) << "the same particles get a normal";
   // Float carries 6e-8 per operation; the sums run over 20-60 pairs in 8 lanes.
   EXPECT_LT(e_lambda, 2e-6);
