@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "field_compare.hpp"
 #include "force_cloud.hpp"
 #include "vrsph/solver/forces.hpp"
 
@@ -36,17 +37,7 @@ Result forces(Cloud<D>& c, Precision precision) {
   return r;
 }
 
-// Largest difference relative to the largest value of the field (pair terms cancel in the sum,
-// so a particle's own value is no scale for its rounding).
-double max_rel_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0.0, scale = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) return INFINITY;  // std::max skips NaN
-    diff = std::max(diff, std::abs(a[i] - b[i]));
-    scale = std::max(scale, std::abs(a[i]));
-  }
-  return scale > 0.0 ? diff / scale : diff;
-}
+using test::max_rel_diff;
 
 template <class T>
 class MixedForces : public ::testing::Test {};

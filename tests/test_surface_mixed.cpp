@@ -8,8 +8,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <vector>
 
+#include "field_compare.hpp"
 #include "surface_tension_fixtures.hpp"
 
 namespace vrsph {
@@ -45,29 +47,16 @@ Fields surface_fields(const std::vector<Vec<D>>& pos, double dp, Precision preci
   return f;
 }
 
-// Largest difference relative to the field's largest value (pair terms cancel in the interior,
-// so a particle's own value is no scale for its rounding).
-double max_rel_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  double diff = 0.0, scale = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) return INFINITY;
-    diff = std::max(diff, std::abs(a[i] - b[i]));
-    scale = std::max(scale, std::abs(a[i]));
-  }
-  return scale > 0.0 ? diff / scale : diff;
-}
+using test::max_rel_diff;
 
-// Moves every particle by a fixed pseudo-random fraction of dp (no lattice symmetry left to make
+// Moves every particle by up to 0.05 dp at random (seeded: no lattice symmetry left to make
 // sums cancel exactly) and the whole set far from the origin.
 template <int D>
 std::vector<Vec<D>> jitter_and_shift(std::vector<Vec<D>> pos, double dp, double shift) {
-  std::uint64_t state = 12345;
-  auto next = [&state] {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;  // [-0.5, 0.5)
-  };
+  std::mt19937 gen(12345);
+  std::uniform_real_distribution<double> u(-0.05 * dp, 0.05 * dp);
   for (Vec<D>& x : pos)
-    for (int k = 0; k < D; ++k) x[k] += 0.1 * dp * next() + shift;
+    for (int k = 0; k < D; ++k) x[k] += u(gen) + shift;
   return pos;
 }
 

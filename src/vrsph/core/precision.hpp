@@ -14,4 +14,12 @@ namespace vrsph {
 
 enum class Precision { double_precision, mixed };
 
+// Calls fn(T{}) with T the arithmetic of the pair terms: float in mixed precision, else double.
+// The one place where a pass's runtime precision picks its template instance.
+template <class Fn>
+decltype(auto) with_pair_type(Precision precision, Fn&& fn) {
+  if (precision == Precision::mixed) return fn(float{});
+  return fn(double{});
+}
+
 }  // namespace vrsph

@@ -283,9 +283,9 @@ ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const Vec<D>* extra_acc, bool buffer_reaction) {
   ps.acc.resize(ps.size());
   ps.drho.resize(ps.size());
-  if (prm.precision == Precision::mixed)
-    return dispatch_viscosity<D, float>(prm, ps, grid, cols, extra_acc, buffer_reaction);
-  return dispatch_viscosity<D, double>(prm, ps, grid, cols, extra_acc, buffer_reaction);
+  return with_pair_type(prm.precision, [&](auto t) {
+    return dispatch_viscosity<D, decltype(t)>(prm, ps, grid, cols, extra_acc, buffer_reaction);
+  });
 }
 
 template <int D>

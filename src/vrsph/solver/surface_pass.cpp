@@ -287,10 +287,8 @@ void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const 
 template <int D>
 void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                   const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
-  if (prm.precision == Precision::mixed)
-    sums_pass<D, float>(prm, ps, grid, cols, sf);
-  else
-    sums_pass<D, double>(prm, ps, grid, cols, sf);
+  with_pair_type(prm.precision,
+                 [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf); });
 }
 
 template <int D>
@@ -303,20 +301,16 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
 template <int D>
 void surface_normals(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                      const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
-  if (prm.precision == Precision::mixed)
-    normals_pass<D, float>(prm, ps, grid, cols, sf);
-  else
-    normals_pass<D, double>(prm, ps, grid, cols, sf);
+  with_pair_type(prm.precision,
+                 [&](auto t) { normals_pass<D, decltype(t)>(prm, ps, grid, cols, sf); });
 }
 
 template <int D>
 void surface_curvature_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
                              const CellGrid<D>& grid, const LevelColumns<D>& cols,
                              SurfaceFields<D>& sf) {
-  if (prm.precision == Precision::mixed)
-    curvature_pass<D, float>(prm, ps, grid, cols, sf);
-  else
-    curvature_pass<D, double>(prm, ps, grid, cols, sf);
+  with_pair_type(prm.precision,
+                 [&](auto t) { curvature_pass<D, decltype(t)>(prm, ps, grid, cols, sf); });
 }
 
 template <int D>
