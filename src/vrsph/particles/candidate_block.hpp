@@ -3,8 +3,9 @@
 // contiguous block padded to a multiple of kBlockPad with inert dummies, so that each particle of
 // the cell sweeps a single unit-stride loop with no remainder. All particles of a cell share the
 // block (particles are sorted by cell, so consecutive particles reuse it): the copy is amortised.
-// Columns 0..D-1 hold the positions; the rest are whatever the pass reads (velocity, density,
-// volume, lambda, normal, ...), each with the value its dummies take.
+// Columns 0..D-1 hold the positions, read from the particle set's own position array (no packed
+// copy of it); the rest are whatever the pass reads (velocity, density, volume, lambda, normal,
+// ...), each with the value its dummies take.
 // The columns hold the pass's arithmetic type T. With T = float (mixed precision) the positions
 // are stored relative to the block's origin, one of its candidates, each as two floats: the
 // last D columns hold the low parts, x - origin = hi + lo, so that r_ij = (hi_i - hi_j) +
@@ -19,6 +20,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "vrsph/core/vec.hpp"
 #include "vrsph/particles/cell_grid.hpp"
 
 namespace vrsph {
@@ -40,13 +42,13 @@ struct CandidateBlock {
   std::int64_t requested = -1;         // the cell last asked for, which maps to `cell`
   Groups groups = Groups::fluid;
 
-  // Gathers the columns src[k] (each of the grid's particle count) of the particles in the
-  // stencil of cell c, unless the block already holds that cell and groups. pad[k]: the value of
-  // column k on the dummies. With T = float, only the positions (k < D) come from src; the other
-  // columns come from the float sources rest[k].
+  // Gathers the positions x and the columns src[k], k >= D (each of the grid's particle count;
+  // src[k < D] is not read) of the particles in the stencil of cell c, unless the block already
+  // holds that cell and groups. pad[k]: the value of column k on the dummies. With T = float the
+  // non-position columns come from the float sources rest[k] instead of src.
   template <int D>
-  void gather(const std::array<const double*, K>& src, const std::array<double, K>& pad,
-              const CellGrid<D>& grid, std::int64_t c, Groups g,
+  void gather(const Vec<D>* x, const std::array<const double*, K>& src,
+              const std::array<double, K>& pad, const CellGrid<D>& grid, std::int64_t c, Groups g,
               const std::array<const T*, K>* rest = nullptr) {
     if (c == requested && g == groups) return;  // consecutive particles share their cell
     requested = c;
@@ -59,7 +61,7 @@ struct CandidateBlock {
     for_each_group_run(grid, c, g, [&](std::uint32_t b, std::uint32_t e) {
       if constexpr (kRelative) {
         if (first && e > b) {  // the origin: the first candidate (the runs' order is fixed)
-          for (int k = 0; k < D; ++k) origin[k] = src[k][b];
+          for (int k = 0; k < D; ++k) origin[k] = x[b][k];
           first = false;
         }
       }
@@ -74,7 +76,7 @@ struct CandidateBlock {
     const std::size_t src_size = grid.group_end(Group::wall);
     std::size_t at = 0;
     for_each_group_run(grid, c, g, [&](std::uint32_t b, std::uint32_t e) {
-      copy_run<D>(src, rest, b, e, src_size, at);
+      copy_run<D>(x, src, rest, b, e, src_size, at);
       at += e - b;
     });
     for (int k = 0; k < K; ++k)
@@ -98,31 +100,37 @@ struct CandidateBlock {
   // call of memmove per run and column would cost more than the copy: whole chunks of kBlockPad
   // values are copied with fixed-size moves instead, overshooting the run's end by less than a
   // chunk (the next run or the padding overwrites it). Only a run whose last chunk would read
-  // past the source arrays is copied element by element. With T = float the positions are
-  // converted on the way (minus the origin) and the rest is copied from the float sources.
+  // past the source arrays is copied element by element. The positions are read across the
+  // particle set's array of vectors (with T = float converted on the way, minus the origin);
+  // with T = float the rest is copied from the float sources.
   template <int D>
-  void copy_run(const std::array<const double*, K>& src, const std::array<const T*, K>* rest,
-                std::size_t b, std::size_t e, std::size_t src_size, std::size_t at) {
+  void copy_run(const Vec<D>* x, const std::array<const double*, K>& src,
+                const std::array<const T*, K>* rest, std::size_t b, std::size_t e,
+                std::size_t src_size, std::size_t at) {
     constexpr std::size_t P = kBlockPad;
     const std::size_t chunks = (e - b + P - 1) / P;
     const bool whole = b + chunks * P <= src_size;
-    for (int k = 0; k < K; ++k) {
+    const std::size_t len = whole ? chunks * P : e - b;
+    const Vec<D>* from_x = x + b;
+    for (int k = 0; k < D; ++k) {
       T* to = col[k].data() + at;
       if constexpr (kRelative) {
-        if (k < D) {
-          const double o = origin[k];
-          const double* from = src[k] + b;
-          const std::size_t len = whole ? chunks * P : e - b;
-          T* lo = col[K - D + k].data() + at;
-          for (std::size_t q = 0; q < len; ++q) {
-            const double rel = from[q] - o;
-            to[q] = static_cast<T>(rel);
-            lo[q] = static_cast<T>(rel - static_cast<double>(to[q]));
-          }
-          continue;
+        const double o = origin[k];
+        T* lo = col[K - D + k].data() + at;
+        for (std::size_t q = 0; q < len; ++q) {
+          const double rel = from_x[q][k] - o;
+          to[q] = static_cast<T>(rel);
+          lo[q] = static_cast<T>(rel - static_cast<double>(to[q]));
         }
+      } else {
+        for (std::size_t q = 0; q < len; ++q) to[q] = from_x[q][k];
+      }
+    }
+    for (int k = D; k < K; ++k) {
+      if constexpr (kRelative) {
         if (k >= K - D) continue;  // the low parts, written with the positions
       }
+      T* to = col[k].data() + at;
       const T* from = nullptr;
       if constexpr (kRelative)
         from = (*rest)[k] + b;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "vrsph/exec/parallel.hpp"
 
@@ -140,30 +141,46 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   keysort_.sort(pcell_, begin_.size() - 1, begin_, perm_, dropped_);
   for (std::uint32_t i : dropped_) lost.push_back(ps.id[i]);
   const std::size_t kept = perm_.size();
-  // Every carried array of the field list is gathered through the permutation into the spare
+  // Every carried array of the field list is gathered through the permutation into a spare
   // array of its element type, and the two swap: the spare then holds the array's previous
-  // storage, ready for the next array of that type. One spare per type (not a twin of every
-  // array) keeps the sort's memory to a few bytes per particle.
+  // storage, ready for the next array of that type. The spares of the vector and double arrays
+  // are the storage of the derived arrays acc and drho, which every sort leaves to be
+  // recomputed, so only the id and kind arrays have spares of their own.
   using PS = ParticleSet<D>;
-  cell_scratch_.resize(kept);
+  std::vector<Vec<D>> spare_vec;
+  std::vector<double> spare_f64;
+  spare_vec.swap(ps.acc);
+  spare_f64.swap(ps.drho);
+  auto spare = [&](auto& a) -> auto& {
+    using A = std::decay_t<decltype(a)>;
+    if constexpr (std::is_same_v<A, std::vector<Vec<D>>>)
+      return spare_vec;
+    else if constexpr (std::is_same_v<A, std::vector<double>>)
+      return spare_f64;
+    else
+      return spare_for(a);
+  };
   PS::zip_fields(
-      [this, kept](std::string_view, FieldRole role, auto& a) {
-        if (!carried(role)) {
-          a.resize(kept);  // derived fields (p, acc, drho) are recomputed after every sort
-          return;
-        }
-        auto& spare = spare_for(a);
-        spare.resize(kept);
-        permute_into(a, perm_, spare);
-        a.swap(spare);
+      [&](std::string_view, FieldRole role, auto& a) {
+        if (!carried(role)) return;  // derived fields (p, acc, drho): resized below
+        auto& to = spare(a);
+        to.resize(kept);
+        permute_into(a, perm_, to);
+        a.swap(to);
       },
       ps);
-  permute_into(pcell_, perm_, cell_scratch_);
-  pcell_.swap(cell_scratch_);
-  // pcell_ held sort keys; particle_cells() gives cells, without the wall group's offset.
-  const auto wall_begin = static_cast<std::int64_t>(group_begin(Group::wall));
-  const auto n_walls = static_cast<std::int64_t>(kept) - wall_begin;
-  exec::for_each(n_walls, [&](std::int64_t i) { pcell_[wall_begin + i] -= ncell_total_; });
+  ps.acc.swap(spare_vec);
+  ps.drho.swap(spare_f64);
+  PS::zip_fields(
+      [kept](std::string_view, FieldRole role, auto& a) {
+        if (!carried(role)) a.resize(kept);  // recomputed after every sort
+      },
+      ps);
+  // The cell of each particle in its new place, from its position (the same function that gave
+  // its key: no gather of the keys through the permutation).
+  pcell_.resize(kept);
+  exec::for_each(static_cast<std::int64_t>(kept),
+                 [&](std::int64_t i) { pcell_[i] = cell_of(ps.pos[i]); });
   return lost;
 }
 

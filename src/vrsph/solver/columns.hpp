@@ -16,52 +16,56 @@ namespace vrsph {
 
 template <int D>
 struct LevelColumns {
-  std::array<std::vector<double>, D> x, v;    // position, velocity
+  // The positions are not copied: the blocks read the particle set's own array, which no pass of
+  // the evaluation moves or resizes (set by pack and pack_geometry).
+  const Vec<D>* pos = nullptr;
+  std::array<std::vector<double>, D> v;       // velocity
   std::vector<double> rho_dev, p, vol, mass;  // rho - rho0, p from the EOS, vol = m / rho
   std::vector<double> wall_vol;               // the volume seen by a wall's continuity sum
   // Float copies of the non-position columns, for the mixed precision's candidate blocks
-  // (core/precision.hpp); empty in double precision.
+  // (core/precision.hpp); empty in double precision, while in mixed precision the double
+  // columns stay empty.
   struct Floats {
     std::array<std::vector<float>, D> v;
     std::vector<float> rho_dev, p, vol, mass, wall_vol;
   } f;
 
-  // Positions and volumes only (the surface passes' needs), from a read-only particle set; in
-  // mixed precision the volumes in float too.
+  // Volumes only besides the positions (the surface passes' needs), from a read-only particle
+  // set: in float in mixed precision, in double otherwise.
   void pack_geometry(const ParticleSet<D>& ps, Precision precision = Precision::double_precision) {
     const std::size_t n = ps.size();
-    for (int k = 0; k < D; ++k) x[k].resize(n);
-    vol.resize(n);
+    pos = ps.pos.data();
     const bool floats = precision == Precision::mixed;
-    if (floats) f.vol.resize(n);
+    if (floats)
+      f.vol.resize(n);
+    else
+      vol.resize(n);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-      for (int k = 0; k < D; ++k) x[k][i] = ps.pos[i][k];
-      vol[i] = ps.mass[i] / ps.rho[i];
-      if (floats) f.vol[i] = static_cast<float>(vol[i]);
+      const double vol_i = ps.mass[i] / ps.rho[i];
+      if (floats)
+        f.vol[i] = static_cast<float>(vol_i);
+      else
+        vol[i] = vol_i;
     });
   }
 
   // Copies the particle state and fills ps.p from the EOS on the way. The density is kept as
   // its deviation rho - rho0: differences of two densities are then exact in float too. In mixed
-  // precision the force pass reads only the float columns besides x (and the surface passes x and
-  // vol), so the other double columns are left empty.
+  // precision the passes read only the float columns besides the positions, so the double
+  // columns are left empty.
   void pack(ParticleSet<D>& ps, const TaitEos& eos,
             Precision precision = Precision::double_precision) {
     const std::size_t n = ps.size();
-    for (int k = 0; k < D; ++k) x[k].resize(n);
-    vol.resize(n);
+    pos = ps.pos.data();
     ps.p.resize(n);
     if (precision == Precision::mixed) {
       pack_floats(ps, eos);
       return;
     }
     for (int k = 0; k < D; ++k) v[k].resize(n);
-    for (auto* c : {&rho_dev, &p, &mass, &wall_vol}) c->resize(n);
+    for (auto* c : {&rho_dev, &p, &vol, &mass, &wall_vol}) c->resize(n);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-      for (int k = 0; k < D; ++k) {
-        x[k][i] = ps.pos[i][k];
-        v[k][i] = ps.vel[i][k];
-      }
+      for (int k = 0; k < D; ++k) v[k][i] = ps.vel[i][k];
       rho_dev[i] = ps.rho[i] - eos.rho0;  // exact (Sterbenz) while rho0 / 2 <= rho <= 2 rho0
       ps.p[i] = eos.pressure(ps.rho[i]);
       p[i] = ps.p[i];
@@ -77,18 +81,14 @@ struct LevelColumns {
     for (int k = 0; k < D; ++k) f.v[k].resize(n);
     for (auto* c : {&f.rho_dev, &f.p, &f.vol, &f.mass, &f.wall_vol}) c->resize(n);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-      for (int k = 0; k < D; ++k) {
-        x[k][i] = ps.pos[i][k];
-        f.v[k][i] = static_cast<float>(ps.vel[i][k]);
-      }
+      for (int k = 0; k < D; ++k) f.v[k][i] = static_cast<float>(ps.vel[i][k]);
       ps.p[i] = eos.pressure(ps.rho[i]);
-      vol[i] = ps.mass[i] / ps.rho[i];
+      const double vol_i = ps.mass[i] / ps.rho[i];
       f.rho_dev[i] = static_cast<float>(ps.rho[i] - eos.rho0);
       f.p[i] = static_cast<float>(ps.p[i]);
-      f.vol[i] = static_cast<float>(vol[i]);
+      f.vol[i] = static_cast<float>(vol_i);
       f.mass[i] = static_cast<float>(ps.mass[i]);
-      f.wall_vol[i] =
-          static_cast<float>(wall_continuity_volume(vol[i], ps.kind[i] == Kind::buffer));
+      f.wall_vol[i] = static_cast<float>(wall_continuity_volume(vol_i, ps.kind[i] == Kind::buffer));
     });
   }
 };

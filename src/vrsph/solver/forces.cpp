@@ -50,16 +50,13 @@ StateView<T, D> state_view(const LevelColumns<D>& c) {
   return w;
 }
 
-// Block sources: the positions (double) into `pos`, the state columns of type T into `state`
-// (for double both are the same array).
-template <int D, class T, class P, class S>
-void fill_sources(const LevelColumns<D>& c, P& pos, S& state) {
+// Block sources besides the positions (the particle set's, LevelColumns::pos): the state
+// columns of type T into `state`.
+template <int D, class T, class S>
+void fill_sources(const LevelColumns<D>& c, S& state) {
   using C = ForceCol<D>;
   const StateView<T, D> w = state_view<T>(c);
-  for (int k = 0; k < D; ++k) {
-    pos[k] = c.x[k].data();
-    state[C::v + k] = w.v[k];
-  }
+  for (int k = 0; k < D; ++k) state[C::v + k] = w.v[k];
   state[C::rho] = w.rho_dev, state[C::p] = w.p, state[C::vol] = w.vol, state[C::mass] = w.mass;
   state[C::wall_vol] = w.wall_vol;
 }
@@ -81,7 +78,7 @@ struct Self {
   template <int D>
   Self(const LevelColumns<D>& c, std::uint32_t i) {
     const StateView<T, D> w = state_view<T>(c);
-    for (int k = 0; k < D; ++k) x[k] = c.x[k][i], v[k] = w.v[k][i];
+    for (int k = 0; k < D; ++k) x[k] = c.pos[i][k], v[k] = w.v[k][i];
     rho_dev = w.rho_dev[i], p = w.p[i];
   }
 };
@@ -212,16 +209,16 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
   std::array<const double*, KF> src{};
   std::array<const T*, KF> rest{};
   if constexpr (std::is_same_v<T, float>)
-    fill_sources<D, T>(cols, src, rest);
+    fill_sources<D, T>(cols, rest);
   else
-    fill_sources<D, T>(cols, src, src);
+    fill_sources<D, T>(cols, src);
   const auto pad = force_pad<D, T>();
   const auto* rest_ptr = std::is_same_v<T, float> ? &rest : nullptr;
   auto body = [&](std::int64_t ii, ForceScratch<D, T>& scratch, ForceAcc& acc) {
     const auto i = static_cast<std::uint32_t>(ii);
     const Self<T> me(cols, i);
     ForceSums s;
-    scratch.fluid.gather(src, pad, grid, cells[i], Groups::fluid, rest_ptr);
+    scratch.fluid.gather(cols.pos, src, pad, grid, cells[i], Groups::fluid, rest_ptr);
     if (ps.kind[i] == Kind::buffer) {
       // v and rho come from another level: acc is only the reaction of this level's fluid and
       // buffer neighbours (walls left out), from which the coupling measures the net force the
@@ -235,7 +232,7 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       wall_sweep(prm, me, scratch.fluid, s);
     } else {
       fluid_sweep<D, VM, DM, false>(prm, me, scratch.fluid, s);
-      scratch.wall.gather(src, pad, grid, cells[i], Groups::wall, rest_ptr);
+      scratch.wall.gather(cols.pos, src, pad, grid, cells[i], Groups::wall, rest_ptr);
       fluid_sweep<D, VM, DM, true>(prm, me, scratch.wall, s);
     }
     Vec<D> a = acceleration<D>(s);

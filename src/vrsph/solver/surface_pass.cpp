@@ -66,21 +66,21 @@ struct SurfaceBlock {
   static constexpr int KL = kFloat ? D + N : -1;  // first low-part column, or none
   using Block = CandidateBlock<K, T>;
 
-  std::array<const double*, K> pos{};  // the positions (and in double every column)
+  const Vec<D>* x = nullptr;           // the positions (the particle set's)
+  std::array<const double*, K> src{};  // the other columns in double
   std::array<const T*, K> rest{};      // the other columns in float
   std::array<double, K> pad = position_pad<K, D>();
 
-  SurfaceBlock(const LevelColumns<D>& c, std::array<const T*, N> extra) {
-    for (int k = 0; k < D; ++k) pos[k] = c.x[k].data();
+  SurfaceBlock(const LevelColumns<D>& c, std::array<const T*, N> extra) : x(c.pos) {
     for (int k = 0; k < N; ++k) {
       if constexpr (kFloat)
         rest[D + k] = extra[k];
       else
-        pos[D + k] = extra[k];
+        src[D + k] = extra[k];
     }
   }
   void gather(Block& blk, const CellGrid<D>& grid, std::int64_t cell, Groups g) const {
-    blk.gather(pos, pad, grid, cell, g, kFloat ? &rest : nullptr);
+    blk.gather(x, src, pad, grid, cell, g, kFloat ? &rest : nullptr);
   }
 };
 
@@ -88,7 +88,7 @@ struct SurfaceBlock {
 template <int D, class Block, class T>
 void frame_of(const LevelColumns<D>& c, std::size_t i, const Block& blk, T (&hi)[3], T (&lo)[3]) {
   double x[3] = {0, 0, 0};
-  for (int d = 0; d < D; ++d) x[d] = c.x[d][i];
+  for (int d = 0; d < D; ++d) x[d] = c.pos[i][d];
   blk.frame(x, hi, lo);
 }
 
@@ -166,7 +166,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
     sf.l_corr[i] = correction_from_m(m, lambda);
     sf.grad_c[i] = grad_c;
     sf.div_r[i] = s[5];
-    sf.shepard[i] = shepard_pair(cols.vol[i], w0) + s[6];  // self term + neighbours
+    sf.shepard[i] = shepard_pair(ps.mass[i] / ps.rho[i], w0) + s[6];  // self + neighbours
   };
   exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
