@@ -108,10 +108,8 @@ void KeySort::sort(const std::vector<std::int64_t>& keys, std::size_t nkeys,
     }
   });
   dropped.clear();
-  for (Part& part : parts_) {
+  for (const Part& part : parts_)
     dropped.insert(dropped.end(), part.dropped.begin(), part.dropped.end());
-    std::vector<std::uint32_t>().swap(part.count);  // scratch: its memory serves the next pass
-  }
 }
 
 }  // namespace vrsph

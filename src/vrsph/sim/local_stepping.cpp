@@ -190,7 +190,6 @@ ForceStats Simulation<D>::evaluate_level(std::size_t k, double t_eval, bool corr
   const ForceStats s = level_forces(L, st, coupling_.wants_buffer_reaction());
   if (corrector_stage && coupling_.corrects_net_force(st))
     impulse_ += dt * coupling_.net_force(levels_, k, st);
-  L.cols.release();
   times_.forces += now_seconds() - t0;
   return s;
 }

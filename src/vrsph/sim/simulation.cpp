@@ -198,7 +198,6 @@ ForceStats Simulation<D>::evaluate_forces(double t_eval, bool corrector_stage) {
   ForceStats s;
   for (Level<D>& L : levels_) s.merge(level_forces(L, st, coupling_.wants_buffer_reaction()));
   coupling_.after_forces(levels_, st);
-  for (Level<D>& L : levels_) L.cols.release();
   times_.forces += now_seconds() - t0;
   return s;
 }

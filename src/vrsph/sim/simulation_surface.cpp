@@ -110,7 +110,6 @@ void Simulation<D>::update_surface_fields() {
   }
   for (Level<D>& L : levels_) pack_level(L);
   surface_passes(has_surface_fields() && levels_[0].prm.sigma > 0.0);
-  for (Level<D>& L : levels_) L.cols.release();
   if (hold) {
     for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
   }

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <array>
-#include <type_traits>
 #include <vector>
 
 #include "vrsph/core/precision.hpp"
@@ -74,16 +73,6 @@ struct LevelColumns {
       mass[i] = ps.mass[i];
       wall_vol[i] = wall_continuity_volume(vol[i], ps.kind[i] == Kind::buffer);
     });
-  }
-
-  // Gives the columns' memory back (they are scratch of one force evaluation: between
-  // evaluations the sort's counters reuse it, which keeps the peak to one of the two).
-  void release() {
-    pos = nullptr;
-    auto free = [](auto& c) { std::decay_t<decltype(c)>().swap(c); };
-    for (int k = 0; k < D; ++k) free(v[k]), free(f.v[k]);
-    for (auto* c : {&rho_dev, &p, &vol, &mass, &wall_vol}) free(*c);
-    for (auto* c : {&f.rho_dev, &f.p, &f.vol, &f.mass, &f.wall_vol}) free(*c);
   }
 
  private:
