@@ -111,19 +111,26 @@ struct CandidateBlock {
     const std::size_t chunks = (e - b + P - 1) / P;
     const bool whole = b + chunks * P <= src_size;
     const std::size_t len = whole ? chunks * P : e - b;
+    // One loop over the particles for all D coordinates: it reads the array of vectors in
+    // order (a loop per coordinate read it with stride D, which GCC 12 vectorised poorly).
     const Vec<D>* from_x = x + b;
+    T* to[D];
+    [[maybe_unused]] T* lo[D];
+    double o[D];
     for (int k = 0; k < D; ++k) {
-      T* to = col[k].data() + at;
-      if constexpr (kRelative) {
-        const double o = origin[k];
-        T* lo = col[K - D + k].data() + at;
-        for (std::size_t q = 0; q < len; ++q) {
-          const double rel = from_x[q][k] - o;
-          to[q] = static_cast<T>(rel);
-          lo[q] = static_cast<T>(rel - static_cast<double>(to[q]));
+      to[k] = col[k].data() + at;
+      if constexpr (kRelative) lo[k] = col[K - D + k].data() + at;
+      o[k] = origin[k];
+    }
+    for (std::size_t q = 0; q < len; ++q) {
+      for (int k = 0; k < D; ++k) {
+        if constexpr (kRelative) {
+          const double rel = from_x[q][k] - o[k];
+          to[k][q] = static_cast<T>(rel);
+          lo[k][q] = static_cast<T>(rel - static_cast<double>(to[k][q]));
+        } else {
+          to[k][q] = from_x[q][k];
         }
-      } else {
-        for (std::size_t q = 0; q < len; ++q) to[q] = from_x[q][k];
       }
     }
     for (int k = D; k < K; ++k) {
