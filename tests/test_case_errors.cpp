@@ -67,6 +67,9 @@ TEST(CaseParser, ImpossibleValues) {
                   {"refinement.0.dp_ratio = 1", "must be in [2, 1000]"});
   expect_contains(error_of(m + "[[refinement]]\nmin = [0, 0]\nmax = [1, 1]\nbuffer_width = 0\n"),
                   {"refinement.0.buffer_width", "> 0"});
+  expect_contains(
+      error_of(m + "[[refinement]]\nmin = [0, 0]\nmax = [1, 1]\nbuffer_rounding = \"up\"\n"),
+      {"refinement.0.buffer_rounding", "up", "whole_dp"});
   expect_contains(error_of(m + "[numerics]\nvres_buffer_fill_min = 0.5\n"),
                   {"numerics.vres_buffer_fill_min = 0.5", "[0, 0.5)", "free surface"});
 }

@@ -68,6 +68,7 @@ min = [0.0, -0.003]
 max = [0.003, 0.003]
 dp_ratio = 3
 buffer_width = 2.0
+buffer_rounding = "whole_dp"
 [[refinement]]
 min = [0.001, -0.001]
 max = [0.002, 0.001]
@@ -210,6 +211,13 @@ TEST(CaseParser, RoundTripEveryKey) {
   EXPECT_TRUE(s.numerics.surface_tension.curvature_correction);
   EXPECT_TRUE(s.vres_conserve_momentum);
   EXPECT_EQ(s.vres_buffer_fill_min, 0.3);
+}
+
+// buffer_rounding is per box, "none" where not given.
+TEST(CaseParser, BufferRoundingPerBox) {
+  const CaseSpec s = parse_text(kEveryKey);
+  EXPECT_EQ(s.refinements[0].buffer_rounding, BufferRounding::whole_dp);
+  EXPECT_EQ(s.refinements[1].buffer_rounding, BufferRounding::none);
 }
 
 // zero_net_force is for closed free surfaces: it round-trips on a drop and is refused with walls

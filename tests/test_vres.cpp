@@ -50,6 +50,32 @@ TEST(VresLayout, ZonesOfParentAndChild) {
   EXPECT_EQ(n[1], 0.0);
 }
 
+// refinement.N.buffer_rounding = "whole_dp": each level's shell is buffer_width x h rounded up
+// to whole dp of that level, as DualSPHysics lays its buffers; "none" keeps buffer_width x h.
+TEST(VresLayout, BufferWidthsRoundedUpToWholeDp) {
+  auto widths = [](const std::vector<std::string>& sets) {
+    CaseSpec spec = load_case("droplet_vr_2d.toml", sets);
+    const auto levels = make_level_layout<2>(spec);
+    return std::pair{levels[1].region.width / levels[1].dp,
+                     levels[0].region.children[0].width / levels[0].dp};
+  };
+  const auto [c_none, p_none] = widths({});
+  EXPECT_NEAR(c_none, 5.2, 1e-9);  // 4 h at h = 1.3 dp
+  EXPECT_NEAR(p_none, 5.2, 1e-9);
+  const auto [c4, p4] = widths({"refinement.0.buffer_rounding=\"whole_dp\""});
+  EXPECT_NEAR(c4, 6.0, 1e-9);
+  EXPECT_NEAR(p4, 6.0, 1e-9);
+  const auto [c2, p2] =
+      widths({"refinement.0.buffer_rounding=\"whole_dp\"", "refinement.0.buffer_width=2"});
+  EXPECT_NEAR(c2, 3.0, 1e-9);  // 2.6 dp up to 3
+  EXPECT_NEAR(p2, 3.0, 1e-9);
+  // A width that is already whole stays (4 h at h = 1.25 dp is 5 dp, not 6).
+  const auto [c5, p5] =
+      widths({"refinement.0.buffer_rounding=\"whole_dp\"", "resolution.h_over_dp=1.25"});
+  EXPECT_NEAR(c5, 5.0, 1e-9);
+  EXPECT_NEAR(p5, 5.0, 1e-9);
+}
+
 TEST(VresLayout, MassPointsTileTheOuterFaces) {
   CaseSpec spec = load_case("droplet_vr_2d.toml", {});
   const auto levels = make_level_layout<2>(spec);

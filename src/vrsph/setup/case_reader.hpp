@@ -88,6 +88,8 @@ inline constexpr EnumName<Precision> kArithmeticNames[] = {{"double", Precision:
                                                            {"mixed", Precision::mixed}};
 inline constexpr EnumName<SurfaceRefresh> kRefreshNames[] = {
     {"every_step", SurfaceRefresh::every_step}, {"capillary", SurfaceRefresh::capillary}};
+inline constexpr EnumName<BufferRounding> kBufferRoundingNames[] = {
+    {"none", BufferRounding::none}, {"whole_dp", BufferRounding::whole_dp}};
 inline constexpr EnumName<OutputCompression> kCompressionNames[] = {
     {"none", OutputCompression::none}, {"zlib", OutputCompression::zlib}};
 

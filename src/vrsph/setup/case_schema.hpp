@@ -42,7 +42,8 @@ inline constexpr std::string_view kFluidBlockKeys[] = {"shape", "center", "radiu
                                                        "max",   "fill",   "velocity", "pressure"};
 inline constexpr std::string_view kWallBlockKeys[] = {"shape", "min", "max", "layers", "thin"};
 inline constexpr std::string_view kDomainKeys[] = {"min", "max", "max_lost_fraction"};
-inline constexpr std::string_view kRefinementKeys[] = {"min", "max", "dp_ratio", "buffer_width"};
+inline constexpr std::string_view kRefinementKeys[] = {"min", "max", "dp_ratio", "buffer_width",
+                                                       "buffer_rounding"};
 inline constexpr std::string_view kOutputKeys[] = {"interval",    "formats", "precision",
                                                    "compression", "line",    "probe"};
 inline constexpr std::string_view kLineKeys[] = {"name", "from", "to"};

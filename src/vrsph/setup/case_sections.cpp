@@ -245,6 +245,8 @@ RefinementBox parse_refinement(const TableReader& r, const CaseSpec& spec) {
   r.require("dp_ratio", b.dp_ratio >= 2 && b.dp_ratio <= kMaxDpRatio,
             fmt::format("must be in [2, {}]", kMaxDpRatio));
   b.buffer_width = r.opt_number("buffer_width", kPositive).value_or(b.buffer_width);
+  b.buffer_rounding =
+      r.opt_enum("buffer_rounding", kBufferRoundingNames).value_or(b.buffer_rounding);
   return b;
 }
 

@@ -25,6 +25,9 @@ enum class BlockShape { circle, sphere, box };
 // rings: concentric rings (circles); cells: the centres of the dp cells that tile a box, so its
 // faces lie dp/2 beyond the outer rows at every resolution level.
 enum class FillMode { lattice, rings, cells };
+// refinement.N.buffer_rounding: buffer shells exactly buffer_width x h, or that width rounded up
+// to a whole number of the level's dp (as DualSPHysics lays its buffers).
+enum class BufferRounding { none, whole_dp };
 enum class WallShape { tank, box };
 // output.precision: how the particle fields of a snapshot are stored (positions stay double).
 enum class OutputPrecision { float64, float32 };
@@ -59,6 +62,7 @@ struct RefinementBox {
   Vec3d max{};
   int dp_ratio = 2;
   double buffer_width = 4.0;  // in units of each level's own h
+  BufferRounding buffer_rounding = BufferRounding::none;
 
   bool operator==(const RefinementBox&) const = default;
 };

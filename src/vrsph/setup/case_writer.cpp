@@ -177,6 +177,9 @@ void write_domain(Writer& w, const CaseSpec& s) {
     w.kv("max", vec(r.max, dim), "m");
     w.kv("dp_ratio", fmt::format("{}", r.dp_ratio));
     w.kv("buffer_width", num(r.buffer_width), "in units of each level's h");
+    // Written only when set: case files of earlier runs have no such key and mean "none".
+    if (r.buffer_rounding != BufferRounding::none)
+      w.kv("buffer_rounding", toml_quote(enum_name(kBufferRoundingNames, r.buffer_rounding)));
   }
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
@@ -73,6 +74,16 @@ std::vector<int> box_levels(const std::vector<int>& parent_box, std::vector<std:
   return level_of_box;
 }
 
+// Thickness of a level's buffer shell of box `ref`: buffer_width x h, or with buffer_rounding =
+// "whole_dp" that thickness rounded up to a whole number of the level's dp, as DualSPHysics
+// lays its buffers (at h = 1.3 dp: 4h = 5.2 dp -> 6 dp, 2h = 2.6 dp -> 3 dp). A width within
+// 1e-9 dp of a whole number is that number (4h at h = 1.25 dp is 5 dp, not 6).
+inline double shell_width(const RefinementBox& ref, double h, double dp) {
+  const double w = ref.buffer_width * h;
+  if (ref.buffer_rounding == BufferRounding::none) return w;
+  return std::ceil(w / dp - 1e-9) * dp;
+}
+
 // Child level L of parent P from box i: dp, h, region, and the parent's record of the child.
 // The child's shell and the kernel support around it must lie in the parent's fluid, and the
 // parent's shell must fit inside the box.
@@ -85,8 +96,8 @@ void add_child_level(const CaseSpec& spec, std::size_t i, int lv, int pl, LevelL
   L.region.parent = pl;
   L.region.has_box = true;
   L.region.box = box_of<D>(ref);
-  L.region.width = ref.buffer_width * L.h;
-  const double w_parent = ref.buffer_width * P.h;
+  L.region.width = shell_width(ref, L.h, L.dp);
+  const double w_parent = shell_width(ref, P.h, P.dp);
   P.region.children.push_back({lv, L.region.box, w_parent});
   const Box<D> shell = L.region.box.grown(L.region.width + 2.0 * L.h);
   if (P.region.has_box && !P.region.box.contains_box(shell)) {
