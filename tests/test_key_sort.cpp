@@ -1,7 +1,7 @@
 // The parallel stable counting sort (particles/key_sort.hpp): the same permutation, key starts
 // and dropped list as a plain serial stable sort, for any thread count, on keys that are nearly
 // sorted (as after a previous step), on keys in reverse order (every part's window spans the
-// whole key range) and with dropped particles.
+// whole key range), with dropped particles, and with keys too full for 16-bit counters.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -69,6 +69,26 @@ TEST(KeySort, ReversedAndRepeatedKeysMatchASerialStableSort) {
   std::vector<std::int64_t> keys(n);
   for (std::size_t i = 0; i < n; ++i) keys[i] = static_cast<std::int64_t>((n - i) % nkeys);
   expect_same_for_all_thread_counts(keys, nkeys);
+}
+
+// Keys fuller than a 16-bit counter: one thread overflows its count, seven overflow only the
+// key's total (10,000 each); both fall back to 32-bit counters with the same result. A second
+// sort with the same sorter on ordinary keys takes the 16-bit counters again.
+TEST(KeySort, KeysHoldingMoreThan65535ParticlesMatchASerialStableSort) {
+  std::mt19937 rng(11);
+  const std::size_t n = 70000 + 2000, nkeys = 40;
+  std::vector<std::int64_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i)
+    keys[i] = i % 36 == 0 ? static_cast<std::int64_t>(rng() % nkeys) : 17;
+  expect_same_for_all_thread_counts(keys, nkeys);
+  vrsph::KeySort sorter;
+  Sorted got;
+  sorter.sort(keys, nkeys, got.begin, got.perm, got.dropped);
+  std::vector<std::int64_t> few(n);
+  for (std::size_t i = 0; i < n; ++i) few[i] = static_cast<std::int64_t>(i * nkeys / n);
+  sorter.sort(few, nkeys, got.begin, got.perm, got.dropped);
+  EXPECT_EQ(got.perm, serial_sort(few, nkeys).perm);
+  EXPECT_EQ(got.begin, serial_sort(few, nkeys).begin);
 }
 
 TEST(KeySort, EmptyAndAllDropped) {

@@ -1,19 +1,23 @@
 #include "vrsph/particles/key_sort.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "vrsph/exec/parallel.hpp"
 
 namespace vrsph {
 
-// The key window of one part and its counts.
-void KeySort::count_part(const std::vector<std::int64_t>& keys, Part& part) {
+// The key window of one part and its dropped particles.
+void KeySort::window(const std::vector<std::int64_t>& keys, Part& part) {
   part.lo = INT64_MAX;
   part.hi = -1;
   part.dropped.clear();
   for (std::int64_t i = part.first; i < part.last; ++i) {
     const std::int64_t k = keys[static_cast<std::size_t>(i)];
-    if (k < 0) continue;
+    if (k < 0) {
+      part.dropped.push_back(static_cast<std::uint32_t>(i));
+      continue;
+    }
     part.lo = std::min(part.lo, k);
     part.hi = std::max(part.hi, k);
   }
@@ -21,36 +25,59 @@ void KeySort::count_part(const std::vector<std::int64_t>& keys, Part& part) {
     part.lo = 0;
     part.hi = -1;
   }
-  part.count.assign(static_cast<std::size_t>(part.hi - part.lo + 1), 0);
+}
+
+// The counts of one part's keys in counters of type C; false when one overflows.
+template <class C>
+bool KeySort::count_part(const std::vector<std::int64_t>& keys, Part& part) {
+  std::vector<C>& count = part.count<C>();
+  count.assign(static_cast<std::size_t>(part.hi - part.lo + 1), 0);
+  if (part.last - part.first <= std::int64_t{std::numeric_limits<C>::max()}) {
+    for (std::int64_t i = part.first; i < part.last; ++i) {  // no count can overflow
+      const std::int64_t k = keys[static_cast<std::size_t>(i)];
+      if (k >= 0) ++count[static_cast<std::size_t>(k - part.lo)];
+    }
+    return true;
+  }
+  bool fits = true;
   for (std::int64_t i = part.first; i < part.last; ++i) {
     const std::int64_t k = keys[static_cast<std::size_t>(i)];
-    if (k < 0) {
-      part.dropped.push_back(static_cast<std::uint32_t>(i));
-      continue;
-    }
-    ++part.count[static_cast<std::size_t>(k - part.lo)];
+    if (k < 0) continue;
+    C& c = count[static_cast<std::size_t>(k - part.lo)];
+    fits &= c != std::numeric_limits<C>::max();
+    ++c;
   }
+  return fits;
 }
 
 // begin[k] = number of particles of key k; each part's count of k becomes the number of
-// particles of key k in the parts before it (its offset inside the key).
-void KeySort::key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin) {
+// particles of key k in the parts before it (its offset inside the key). False when a key holds
+// more particles than a counter of type C can reach (the offsets run up to the key's total).
+template <class C>
+bool KeySort::key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin) {
   constexpr std::int64_t kRange = 4096;
   const auto n = static_cast<std::int64_t>(nkeys);
   const std::int64_t ranges = (n + kRange - 1) / kRange;
+  std::vector<std::uint8_t> fits(static_cast<std::size_t>(ranges), 1);
   exec::for_each(ranges, [&](std::int64_t r) {
     const std::int64_t a = r * kRange, b = std::min(n, a + kRange);
     std::fill(begin.begin() + a, begin.begin() + b, 0u);
+    std::uint32_t* total = begin.data();
     for (Part& part : parts_) {
+      C* count = part.count<C>().data();  // from the window's first key, part.lo
       const std::int64_t lo = std::max(a, part.lo), hi = std::min(b - 1, part.hi);
       for (std::int64_t k = lo; k <= hi; ++k) {
-        std::uint32_t& c = part.count[static_cast<std::size_t>(k - part.lo)];
+        C& c = count[k - part.lo];
         const std::uint32_t here = c;
-        c = begin[static_cast<std::size_t>(k)];
-        begin[static_cast<std::size_t>(k)] += here;
+        c = static_cast<C>(total[k]);
+        total[k] += here;
       }
     }
+    std::uint32_t top = 0;
+    for (std::int64_t k = a; k < b; ++k) top = std::max(top, total[k]);
+    fits[r] = top <= std::numeric_limits<C>::max();
   });
+  return std::all_of(fits.begin(), fits.end(), [](std::uint8_t f) { return f != 0; });
 }
 
 // begin[0..nkeys) from counts to starts, begin[nkeys] = total: each of `parts` key ranges sums
@@ -83,6 +110,31 @@ void KeySort::exclusive_scan(std::vector<std::uint32_t>& begin, std::size_t nkey
   begin[nkeys] = sums[static_cast<std::size_t>(parts)];
 }
 
+// Counts, offsets and scatter with counters of type C; false (nothing scattered) when a key is
+// too full for them.
+template <class C>
+bool KeySort::sort_with(const std::vector<std::int64_t>& keys, std::size_t nkeys,
+                        std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm) {
+  const auto parts = static_cast<std::int64_t>(parts_.size());
+  std::vector<std::uint8_t> fits(parts_.size(), 1);
+  exec::for_each(parts, [&](std::int64_t t) { fits[t] = count_part<C>(keys, parts_[t]); });
+  if (std::find(fits.begin(), fits.end(), 0) != fits.end()) return false;
+  if (!key_totals<C>(nkeys, begin)) return false;
+  exclusive_scan(begin, nkeys, static_cast<int>(parts));
+  perm.resize(begin[nkeys]);
+  exec::for_each(parts, [&](std::int64_t t) {
+    Part& part = parts_[t];
+    std::vector<C>& count = part.count<C>();
+    for (std::int64_t i = part.first; i < part.last; ++i) {
+      const std::int64_t k = keys[static_cast<std::size_t>(i)];
+      if (k < 0) continue;
+      C& off = count[static_cast<std::size_t>(k - part.lo)];
+      perm[begin[static_cast<std::size_t>(k)] + off++] = static_cast<std::uint32_t>(i);
+    }
+  });
+  return true;
+}
+
 void KeySort::sort(const std::vector<std::int64_t>& keys, std::size_t nkeys,
                    std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm,
                    std::vector<std::uint32_t>& dropped) {
@@ -93,20 +145,14 @@ void KeySort::sort(const std::vector<std::int64_t>& keys, std::size_t nkeys,
     parts_[t].first = n * t / parts;
     parts_[t].last = n * (t + 1) / parts;
   }
-  exec::for_each(parts, [&](std::int64_t t) { count_part(keys, parts_[t]); });
+  exec::for_each(parts, [&](std::int64_t t) { window(keys, parts_[t]); });
   begin.resize(nkeys + 1);
-  key_totals(nkeys, begin);
-  exclusive_scan(begin, nkeys, parts);
-  perm.resize(begin[nkeys]);
-  exec::for_each(parts, [&](std::int64_t t) {
-    Part& part = parts_[t];
-    for (std::int64_t i = part.first; i < part.last; ++i) {
-      const std::int64_t k = keys[static_cast<std::size_t>(i)];
-      if (k < 0) continue;
-      std::uint32_t& off = part.count[static_cast<std::size_t>(k - part.lo)];
-      perm[begin[static_cast<std::size_t>(k)] + off++] = static_cast<std::uint32_t>(i);
-    }
-  });
+  if (sort_with<std::uint16_t>(keys, nkeys, begin, perm)) {
+    for (Part& part : parts_) std::vector<std::uint32_t>().swap(part.count32);
+  } else {
+    for (Part& part : parts_) std::vector<std::uint16_t>().swap(part.count16);
+    sort_with<std::uint32_t>(keys, nkeys, begin, perm);  // 32 bits hold any count
+  }
   dropped.clear();
   for (const Part& part : parts_)
     dropped.insert(dropped.end(), part.dropped.begin(), part.dropped.end());

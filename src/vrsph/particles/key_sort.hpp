@@ -27,14 +27,32 @@ class KeySort {
             std::vector<std::uint32_t>& dropped);
 
  private:
+  // Counters are 16 bits wide while no key holds more than 65,535 particles (cells hold a few:
+  // half the memory of the counters, which are as long as the cell table); a sort that finds a
+  // fuller key counts again in 32 bits. The result is the same either way.
   struct Part {
     std::int64_t first = 0, last = 0;  // particle range [first, last)
     std::int64_t lo = 0, hi = -1;      // key window [lo, hi]; empty when hi < lo
-    std::vector<std::uint32_t> count;  // per key of the window: count, then offset in the key
+    // per key of the window: count, then offset in the key (one of the two, by width)
+    std::vector<std::uint16_t> count16;
+    std::vector<std::uint32_t> count32;
     std::vector<std::uint32_t> dropped;
+    template <class C>
+    std::vector<C>& count() {
+      if constexpr (sizeof(C) == 2)
+        return count16;
+      else
+        return count32;
+    }
   };
-  void count_part(const std::vector<std::int64_t>& keys, Part& part);
-  void key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin);
+  template <class C>
+  bool sort_with(const std::vector<std::int64_t>& keys, std::size_t nkeys,
+                 std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm);
+  void window(const std::vector<std::int64_t>& keys, Part& part);
+  template <class C>
+  bool count_part(const std::vector<std::int64_t>& keys, Part& part);
+  template <class C>
+  bool key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin);
   static void exclusive_scan(std::vector<std::uint32_t>& begin, std::size_t nkeys, int parts);
 
   std::vector<Part> parts_;
