@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <type_traits>
 
 #include "vrsph/exec/parallel.hpp"
 
@@ -147,30 +146,19 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   // are the storage of the derived arrays acc and drho, which every sort leaves to be
   // recomputed, so only the id and kind arrays have spares of their own.
   using PS = ParticleSet<D>;
-  std::vector<Vec<D>> spare_vec;
-  std::vector<double> spare_f64;
-  spare_vec.swap(ps.acc);
-  spare_f64.swap(ps.drho);
-  auto spare = [&](auto& a) -> auto& {
-    using A = std::decay_t<decltype(a)>;
-    if constexpr (std::is_same_v<A, std::vector<Vec<D>>>)
-      return spare_vec;
-    else if constexpr (std::is_same_v<A, std::vector<double>>)
-      return spare_f64;
-    else
-      return spare_for(a);
-  };
+  spare_vec_.swap(ps.acc);  // lent for the sort; carry()'s spares wait in acc and drho meanwhile
+  spare_f64_.swap(ps.drho);
   PS::zip_fields(
       [&](std::string_view, FieldRole role, auto& a) {
         if (!carried(role)) return;  // derived fields (p, acc, drho): resized below
-        auto& to = spare(a);
-        to.resize(kept);
-        permute_into(a, perm_, to);
-        a.swap(to);
+        auto& spare = spare_for(a);
+        spare.resize(kept);
+        permute_into(a, perm_, spare);
+        a.swap(spare);
       },
       ps);
-  ps.acc.swap(spare_vec);
-  ps.drho.swap(spare_f64);
+  spare_vec_.swap(ps.acc);  // acc and drho take the storage the gathers left over
+  spare_f64_.swap(ps.drho);
   PS::zip_fields(
       [kept](std::string_view, FieldRole role, auto& a) {
         if (!carried(role)) a.resize(kept);  // recomputed after every sort

@@ -138,8 +138,8 @@ class CellGrid {
   std::size_t sorted_count_ = 0;  // particles before the last sort (what carry() accepts)
   std::vector<std::uint32_t> dropped_;
   KeySort keysort_;
-  // Gather targets of the sort for the id and kind arrays, and of carry() (spare_for; the sort
-  // takes the derived arrays' storage for the others).
+  // Gather targets, one per element type (spare_for): of the sort and of carry(). For the vector
+  // and double arrays the sort swaps in the storage of the derived arrays acc and drho.
   std::vector<std::uint64_t> spare_u64_;
   std::vector<Kind> spare_kind_;
   std::vector<Vec<D>> spare_vec_;
