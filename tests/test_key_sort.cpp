@@ -1,7 +1,7 @@
 // The parallel stable counting sort (particles/key_sort.hpp): the same permutation, key starts
 // and dropped list as a plain serial stable sort, for any thread count, on keys that are nearly
 // sorted (as after a previous step), on keys in reverse order (every part's window spans the
-// whole key range), with dropped particles, and with keys too full for 16-bit counters.
+// whole key range), with dropped particles, and with keys too full for 8- and 16-bit counters.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,10 +19,10 @@ struct Sorted {
   std::vector<std::uint32_t> begin, perm, dropped;
 };
 
-Sorted serial_sort(const std::vector<std::int64_t>& keys, std::size_t nkeys) {
+Sorted serial_sort(const std::vector<std::uint32_t>& keys, std::size_t nkeys) {
   Sorted s;
   for (std::uint32_t i = 0; i < keys.size(); ++i) {
-    if (keys[i] < 0)
+    if (keys[i] == vrsph::KeySort::kDropped)
       s.dropped.push_back(i);
     else
       s.perm.push_back(i);
@@ -35,7 +35,7 @@ Sorted serial_sort(const std::vector<std::int64_t>& keys, std::size_t nkeys) {
   return s;
 }
 
-void expect_same_for_all_thread_counts(const std::vector<std::int64_t>& keys, std::size_t nkeys) {
+void expect_same_for_all_thread_counts(const std::vector<std::uint32_t>& keys, std::size_t nkeys) {
   const Sorted want = serial_sort(keys, nkeys);
   const int before = vrsph::exec::thread_count();
   for (int threads : {1, 2, 3, 7}) {
@@ -54,20 +54,20 @@ void expect_same_for_all_thread_counts(const std::vector<std::int64_t>& keys, st
 TEST(KeySort, NearlySortedKeysWithDropsMatchASerialStableSort) {
   std::mt19937 rng(7);
   const std::size_t n = 5000, nkeys = 2000;
-  std::vector<std::int64_t> keys(n);
+  std::vector<std::uint32_t> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto base = static_cast<std::int64_t>(i * nkeys / n);  // sorted, several per key
-    keys[i] = std::clamp<std::int64_t>(base + static_cast<std::int64_t>(rng() % 5) - 2, 0,
-                                       static_cast<std::int64_t>(nkeys) - 1);
-    if (rng() % 97 == 0) keys[i] = -1;
+    keys[i] = static_cast<std::uint32_t>(std::clamp<std::int64_t>(
+        base + static_cast<std::int64_t>(rng() % 5) - 2, 0, static_cast<std::int64_t>(nkeys) - 1));
+    if (rng() % 97 == 0) keys[i] = vrsph::KeySort::kDropped;
   }
   expect_same_for_all_thread_counts(keys, nkeys);
 }
 
 TEST(KeySort, ReversedAndRepeatedKeysMatchASerialStableSort) {
   const std::size_t n = 3001, nkeys = 50;
-  std::vector<std::int64_t> keys(n);
-  for (std::size_t i = 0; i < n; ++i) keys[i] = static_cast<std::int64_t>((n - i) % nkeys);
+  std::vector<std::uint32_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i) keys[i] = static_cast<std::uint32_t>((n - i) % nkeys);
   expect_same_for_all_thread_counts(keys, nkeys);
 }
 
@@ -77,23 +77,34 @@ TEST(KeySort, ReversedAndRepeatedKeysMatchASerialStableSort) {
 TEST(KeySort, KeysHoldingMoreThan65535ParticlesMatchASerialStableSort) {
   std::mt19937 rng(11);
   const std::size_t n = 70000 + 2000, nkeys = 40;
-  std::vector<std::int64_t> keys(n);
+  std::vector<std::uint32_t> keys(n);
   for (std::size_t i = 0; i < n; ++i)
-    keys[i] = i % 36 == 0 ? static_cast<std::int64_t>(rng() % nkeys) : 17;
+    keys[i] = i % 36 == 0 ? static_cast<std::uint32_t>(rng() % nkeys) : 17;
   expect_same_for_all_thread_counts(keys, nkeys);
   vrsph::KeySort sorter;
   Sorted got;
   sorter.sort(keys, nkeys, got.begin, got.perm, got.dropped);
-  std::vector<std::int64_t> few(n);
-  for (std::size_t i = 0; i < n; ++i) few[i] = static_cast<std::int64_t>(i * nkeys / n);
+  std::vector<std::uint32_t> few(n);
+  for (std::size_t i = 0; i < n; ++i) few[i] = static_cast<std::uint32_t>(i * nkeys / n);
   sorter.sort(few, nkeys, got.begin, got.perm, got.dropped);
   EXPECT_EQ(got.perm, serial_sort(few, nkeys).perm);
   EXPECT_EQ(got.begin, serial_sort(few, nkeys).begin);
 }
 
+// Keys too full for 8-bit counters but not for 16-bit ones: 300 particles of one key, taken
+// whole by one thread (its own count overflows) or split over several (only the key's total
+// does), between keys of a few particles each.
+TEST(KeySort, KeysHoldingMoreThan255ParticlesMatchASerialStableSort) {
+  const std::size_t n = 1200, nkeys = 400;
+  std::vector<std::uint32_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i)
+    keys[i] = i >= 450 && i < 750 ? 150 : static_cast<std::uint32_t>(i * nkeys / n);
+  expect_same_for_all_thread_counts(keys, nkeys);
+}
+
 TEST(KeySort, EmptyAndAllDropped) {
   expect_same_for_all_thread_counts({}, 10);
-  expect_same_for_all_thread_counts(std::vector<std::int64_t>(17, -1), 10);
+  expect_same_for_all_thread_counts(std::vector<std::uint32_t>(17, vrsph::KeySort::kDropped), 10);
 }
 
 }  // namespace

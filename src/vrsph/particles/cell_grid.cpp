@@ -1,5 +1,7 @@
 #include "vrsph/particles/cell_grid.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -74,6 +76,13 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
     n_[k] = hi[k] - lo[k] + 1 + 2 * reach_;
     ncell_total_ *= n_[k];
   }
+  // Keys and particle cells are 32-bit (the key kDropped excluded): a table this large would
+  // take 32 GB.
+  if (2 * ncell_total_ >= std::int64_t{KeySort::kDropped}) {
+    throw std::runtime_error(fmt::format(
+        "cell grid: the particles span {} cells of {:g} m, more than the 2^31 a cell table holds",
+        ncell_total_, cell_size_));
+  }
   stride_ = {1, n_[0], n_[0] * n_[1]};
   begin_.resize(2 * static_cast<std::size_t>(ncell_total_) + 1);  // filled by the sort
 }
@@ -122,8 +131,8 @@ void permute_into(const std::vector<T>& a, const std::vector<std::uint32_t>& per
 }  // namespace
 
 template <int D>
-std::size_t CellGrid<D>::key(std::int64_t cell, Kind k) const {
-  return static_cast<std::size_t>(cell + static_cast<std::int64_t>(group_of(k)) * ncell_total_);
+std::uint32_t CellGrid<D>::key(std::int64_t cell, Kind k) const {
+  return static_cast<std::uint32_t>(cell + static_cast<std::int64_t>(group_of(k)) * ncell_total_);
 }
 
 template <int D>
@@ -134,8 +143,7 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   pcell_.resize(n);
   fit_to(ps);
   exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-    pcell_[i] =
-        inside(ps.pos[i]) ? static_cast<std::int64_t>(key(cell_of(ps.pos[i]), ps.kind[i])) : -1;
+    pcell_[i] = inside(ps.pos[i]) ? key(cell_of(ps.pos[i]), ps.kind[i]) : KeySort::kDropped;
   });
   keysort_.sort(pcell_, begin_.size() - 1, begin_, perm_, dropped_);
   for (std::uint32_t i : dropped_) lost.push_back(ps.id[i]);
@@ -167,8 +175,9 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   // The cell of each particle in its new place, from its position (the same function that gave
   // its key: no gather of the keys through the permutation).
   pcell_.resize(kept);
-  exec::for_each(static_cast<std::int64_t>(kept),
-                 [&](std::int64_t i) { pcell_[i] = cell_of(ps.pos[i]); });
+  exec::for_each(static_cast<std::int64_t>(kept), [&](std::int64_t i) {
+    pcell_[i] = static_cast<std::uint32_t>(cell_of(ps.pos[i]));
+  });
   return lost;
 }
 

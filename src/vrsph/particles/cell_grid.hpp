@@ -80,7 +80,7 @@ class CellGrid {
   }
 
   // Cell of each particle after the last sort (same order as the particle arrays).
-  const std::vector<std::int64_t>& particle_cells() const { return pcell_; }
+  const std::vector<std::uint32_t>& particle_cells() const { return pcell_; }
   std::int64_t cell_count() const { return ncell_total_; }
   // Index range of group g after the last sort: fluid first, then walls.
   std::uint32_t group_begin(Group g) const {
@@ -114,7 +114,7 @@ class CellGrid {
     }
   }
 
-  std::size_t key(std::int64_t cell, Kind k) const;
+  std::uint32_t key(std::int64_t cell, Kind k) const;
   // Absolute cell coordinate of x along axis k (floor: also below the origin).
   std::int64_t cell_coord(const Vec<D>& x, int k) const {
     const double a = (x[k] - origin_[k]) * inv_cell_;
@@ -133,7 +133,7 @@ class CellGrid {
   std::array<std::int64_t, 3> stride_{1, 1, 1};  // linear index strides
   std::int64_t ncell_total_ = 0;
   std::vector<std::uint32_t> begin_;  // begin_[k]..begin_[k+1]: particles of key k = c + g*ncells
-  std::vector<std::int64_t> pcell_;
+  std::vector<std::uint32_t> pcell_;  // cell of each particle, then (during a sort) its key
   std::vector<std::uint32_t> perm_;
   std::size_t sorted_count_ = 0;  // particles before the last sort (what carry() accepts)
   std::vector<std::uint32_t> dropped_;

@@ -7,19 +7,26 @@
 
 namespace vrsph {
 
+template <class C>
+void KeySort::Part::keep_only() {
+  if constexpr (sizeof(C) != 1) std::vector<std::uint8_t>().swap(count8);
+  if constexpr (sizeof(C) != 2) std::vector<std::uint16_t>().swap(count16);
+  if constexpr (sizeof(C) != 4) std::vector<std::uint32_t>().swap(count32);
+}
+
 // The key window of one part and its dropped particles.
-void KeySort::window(const std::vector<std::int64_t>& keys, Part& part) {
+void KeySort::window(const std::vector<std::uint32_t>& keys, Part& part) {
   part.lo = INT64_MAX;
   part.hi = -1;
   part.dropped.clear();
   for (std::int64_t i = part.first; i < part.last; ++i) {
-    const std::int64_t k = keys[static_cast<std::size_t>(i)];
-    if (k < 0) {
+    const std::uint32_t k = keys[static_cast<std::size_t>(i)];
+    if (k == kDropped) {
       part.dropped.push_back(static_cast<std::uint32_t>(i));
       continue;
     }
-    part.lo = std::min(part.lo, k);
-    part.hi = std::max(part.hi, k);
+    part.lo = std::min<std::int64_t>(part.lo, k);
+    part.hi = std::max<std::int64_t>(part.hi, k);
   }
   if (part.hi < part.lo) {
     part.lo = 0;
@@ -27,27 +34,25 @@ void KeySort::window(const std::vector<std::int64_t>& keys, Part& part) {
   }
 }
 
-// The counts of one part's keys in counters of type C; false when one overflows.
+// The counts of one part's keys in counters of type C; false when one overflows. The counters
+// wrap silently; a wrap loses a multiple of 2^bits, so the counts sum to the part's kept
+// particles exactly when none wrapped (one pass over the window instead of a test per particle).
 template <class C>
-bool KeySort::count_part(const std::vector<std::int64_t>& keys, Part& part) {
-  std::vector<C>& count = part.count<C>();
-  count.assign(static_cast<std::size_t>(part.hi - part.lo + 1), 0);
-  if (part.last - part.first <= std::int64_t{std::numeric_limits<C>::max()}) {
-    for (std::int64_t i = part.first; i < part.last; ++i) {  // no count can overflow
-      const std::int64_t k = keys[static_cast<std::size_t>(i)];
-      if (k >= 0) ++count[static_cast<std::size_t>(k - part.lo)];
-    }
-    return true;
+bool KeySort::count_part(const std::vector<std::uint32_t>& keys, Part& part) {
+  std::vector<C>& counters = part.count<C>();
+  counters.assign(static_cast<std::size_t>(part.hi - part.lo + 1), 0);
+  // raw restrict pointers: a store through an 8-bit counter may otherwise alias anything,
+  // the vectors' own pointers included, which the loop would reload after every store
+  C* __restrict count = counters.data();
+  const std::uint32_t* __restrict key = keys.data();
+  const std::int64_t lo = part.lo, last = part.last;
+  for (std::int64_t i = part.first; i < last; ++i) {
+    const std::uint32_t k = key[i];
+    if (k != kDropped) ++count[k - lo];
   }
-  bool fits = true;
-  for (std::int64_t i = part.first; i < part.last; ++i) {
-    const std::int64_t k = keys[static_cast<std::size_t>(i)];
-    if (k < 0) continue;
-    C& c = count[static_cast<std::size_t>(k - part.lo)];
-    fits &= c != std::numeric_limits<C>::max();
-    ++c;
-  }
-  return fits;
+  std::int64_t total = 0;
+  for (const C c : counters) total += c;
+  return total == part.last - part.first - static_cast<std::int64_t>(part.dropped.size());
 }
 
 // begin[k] = number of particles of key k; each part's count of k becomes the number of
@@ -62,12 +67,15 @@ bool KeySort::key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin) {
   exec::for_each(ranges, [&](std::int64_t r) {
     const std::int64_t a = r * kRange, b = std::min(n, a + kRange);
     std::fill(begin.begin() + a, begin.begin() + b, 0u);
-    std::uint32_t* total = begin.data();
+    // restrict: 8-bit counters are of a character type, which may alias the totals otherwise,
+    // and the loop would reload every total after every counter store (not vectorised)
+    std::uint32_t* __restrict total = begin.data();
     for (Part& part : parts_) {
-      C* count = part.count<C>().data();  // from the window's first key, part.lo
-      const std::int64_t lo = std::max(a, part.lo), hi = std::min(b - 1, part.hi);
+      C* __restrict count = part.count<C>().data();  // from the window's first key, part.lo
+      const std::int64_t first = part.lo;  // a local: a counter store may alias part.lo too
+      const std::int64_t lo = std::max(a, first), hi = std::min(b - 1, part.hi);
       for (std::int64_t k = lo; k <= hi; ++k) {
-        C& c = count[k - part.lo];
+        C& c = count[k - first];
         const std::uint32_t here = c;
         c = static_cast<C>(total[k]);
         total[k] += here;
@@ -113,7 +121,7 @@ void KeySort::exclusive_scan(std::vector<std::uint32_t>& begin, std::size_t nkey
 // Counts, offsets and scatter with counters of type C; false (nothing scattered) when a key is
 // too full for them.
 template <class C>
-bool KeySort::sort_with(const std::vector<std::int64_t>& keys, std::size_t nkeys,
+bool KeySort::sort_with(const std::vector<std::uint32_t>& keys, std::size_t nkeys,
                         std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm) {
   const auto parts = static_cast<std::int64_t>(parts_.size());
   std::vector<std::uint8_t> fits(parts_.size(), 1);
@@ -124,18 +132,21 @@ bool KeySort::sort_with(const std::vector<std::int64_t>& keys, std::size_t nkeys
   perm.resize(begin[nkeys]);
   exec::for_each(parts, [&](std::int64_t t) {
     Part& part = parts_[t];
-    std::vector<C>& count = part.count<C>();
-    for (std::int64_t i = part.first; i < part.last; ++i) {
-      const std::int64_t k = keys[static_cast<std::size_t>(i)];
-      if (k < 0) continue;
-      C& off = count[static_cast<std::size_t>(k - part.lo)];
-      perm[begin[static_cast<std::size_t>(k)] + off++] = static_cast<std::uint32_t>(i);
+    C* __restrict offset = part.count<C>().data();  // restrict: as in count_part
+    const std::uint32_t* __restrict key = keys.data();
+    const std::uint32_t* __restrict start = begin.data();
+    std::uint32_t* __restrict sorted = perm.data();
+    const std::int64_t lo = part.lo, last = part.last;
+    for (std::int64_t i = part.first; i < last; ++i) {
+      const std::uint32_t k = key[i];
+      if (k == kDropped) continue;
+      sorted[start[k] + offset[k - lo]++] = static_cast<std::uint32_t>(i);
     }
   });
   return true;
 }
 
-void KeySort::sort(const std::vector<std::int64_t>& keys, std::size_t nkeys,
+void KeySort::sort(const std::vector<std::uint32_t>& keys, std::size_t nkeys,
                    std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm,
                    std::vector<std::uint32_t>& dropped) {
   const auto n = static_cast<std::int64_t>(keys.size());
@@ -147,11 +158,13 @@ void KeySort::sort(const std::vector<std::int64_t>& keys, std::size_t nkeys,
   }
   exec::for_each(parts, [&](std::int64_t t) { window(keys, parts_[t]); });
   begin.resize(nkeys + 1);
-  if (sort_with<std::uint16_t>(keys, nkeys, begin, perm)) {
-    for (Part& part : parts_) std::vector<std::uint32_t>().swap(part.count32);
+  if (sort_with<std::uint8_t>(keys, nkeys, begin, perm)) {
+    for (Part& part : parts_) part.keep_only<std::uint8_t>();
+  } else if (sort_with<std::uint16_t>(keys, nkeys, begin, perm)) {
+    for (Part& part : parts_) part.keep_only<std::uint16_t>();
   } else {
-    for (Part& part : parts_) std::vector<std::uint16_t>().swap(part.count16);
     sort_with<std::uint32_t>(keys, nkeys, begin, perm);  // 32 bits hold any count
+    for (Part& part : parts_) part.keep_only<std::uint32_t>();
   }
   dropped.clear();
   for (const Part& part : parts_)
