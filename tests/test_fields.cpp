@@ -61,11 +61,12 @@ T value_of(std::uint64_t id, int field, std::string_view name) {
 }
 
 template <int D>
-ParticleSet<D> filled_set(std::size_t n, std::uint64_t seed) {
+ParticleSet<D> filled_set(std::size_t n, std::uint64_t seed, bool keeps_shift = true) {
   std::vector<std::uint64_t> ids(n);
   for (std::size_t k = 0; k < n; ++k) ids[k] = 5000 + 13 * k;
   std::shuffle(ids.begin(), ids.end(), std::mt19937_64(seed));
   ParticleSet<D> ps;
+  ps.keep_shift(keeps_shift);
   ps.resize(n);
   int field = 0;
   ps.for_each_field([&](std::string_view name, auto& v, FieldRole) {
@@ -197,6 +198,50 @@ TYPED_TEST(FieldListTest, ResizeAndMergeCoverEveryField) {
     ++sized;
   });
   EXPECT_EQ(sized, kPersistentFields + kDerivedFields + kStepCopyFields);
+}
+
+}  // namespace
+}  // namespace vrsph
+
+namespace vrsph {
+namespace {
+
+// A level that does not shift keeps no shift array: the sort, compaction, a checkpoint (no
+// shift record), resize and the merge leave it empty and carry every other field; keeping it
+// again gives one zero displacement per particle.
+TYPED_TEST(FieldListTest, WithoutShiftingTheShiftArrayStaysEmpty) {
+  constexpr int D = TypeParam::value;
+  ParticleSet<D> ps = filled_set<D>(800, 12, false);
+  Vec<D> lo, hi;
+  for (int k = 0; k < D; ++k) lo[k] = -0.1, hi[k] = 1.1;
+  CellGrid<D> grid(lo, hi, 0.1, 2);
+  ASSERT_TRUE(grid.sort(ps).empty());
+  EXPECT_TRUE(ps.shift.empty());
+  EXPECT_EQ(expect_fields(ps, carried, "sort").at(FieldRole::persistent), kPersistentFields - 1);
+  std::vector<std::uint8_t> keep(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) keep[i] = mix(ps.id[i]) % 4 != 0;
+  ps.compact(keep);
+  EXPECT_TRUE(ps.shift.empty());
+  expect_fields(ps, carried, "compact");
+  Checkpoint ck;
+  ck.put_particles<D>(0, ps);
+  EXPECT_FALSE(ck.has("level0.shift"));
+  ParticleSet<D> restored;
+  ck.get_particles<D>(0, restored);
+  EXPECT_FALSE(restored.keeps_shift);
+  EXPECT_TRUE(restored.shift.empty());
+  ASSERT_EQ(restored.id, ps.id);
+  expect_fields(restored, persistent_only, "checkpoint");
+  const ParticleSet<D> other = filled_set<D>(30, 13, false);
+  const std::vector<const ParticleSet<D>*> sets = {&ps, &other};
+  const MergedLevels<D> m = merge_levels<D>(sets);
+  EXPECT_TRUE(m.particles.shift.empty());
+  expect_fields(m.particles, carried, "merge");  // p, acc and drho are stale since the sort
+  ps.resize(ps.size() + 5);
+  EXPECT_TRUE(ps.shift.empty());
+  ps.keep_shift(true);
+  ASSERT_EQ(ps.shift.size(), ps.size());
+  for (const Vec<D>& d : ps.shift) EXPECT_EQ(norm(d), 0.0);
 }
 
 }  // namespace

@@ -144,6 +144,7 @@ void Checkpoint::get_particles(int level, ParticleSet<D>& ps) const {
   const std::string pre = level_prefix(level);
   const std::size_t n = u64(pre + "id").size();
   ps = ParticleSet<D>{};
+  ps.keeps_shift = has(pre + "shift");
   ps.resize(n);
   ps.for_each_field([&](std::string_view name, auto& v, FieldRole role) {
     if (role != FieldRole::persistent) return;

@@ -48,7 +48,7 @@ std::vector<ExtraField> surface_extras(Simulation<D>& sim) {
       curvature.values.push_back(sf.curvature.empty() ? 0.0 : sf.curvature[i]);
       for (int k = 0; k < D; ++k) {
         normal.values.push_back(sf.normal.empty() ? 0.0 : sf.normal[i][k]);
-        shift.values.push_back(ps.shift[i][k]);
+        shift.values.push_back(ps.keeps_shift ? ps.shift[i][k] : 0.0);
       }
     }
   }

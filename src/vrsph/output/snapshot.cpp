@@ -144,6 +144,8 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
   MergedLevels<D> m;
   std::size_t n = 0;
   for (const ParticleSet<D>* ps : levels) n += ps->size();
+  m.particles.keeps_shift = std::all_of(levels.begin(), levels.end(),
+                                        [](const ParticleSet<D>* ps) { return ps->keeps_shift; });
   m.particles.resize(n);
   m.level.resize(n);
   std::size_t j = 0;

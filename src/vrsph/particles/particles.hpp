@@ -41,20 +41,25 @@ template <int D>
 struct ParticleSet {
   std::vector<std::uint64_t> id;  // permanent particle id
   std::vector<Kind> kind;
-  std::vector<Vec<D>> pos;    // m
-  std::vector<Vec<D>> vel;    // m/s
-  std::vector<double> rho;    // kg/m^3
-  std::vector<double> mass;   // kg
-  std::vector<Vec<D>> shift;  // last shifting displacement, m (an output field)
-  std::vector<double> p;      // pressure, Pa
-  std::vector<Vec<D>> acc;    // dv/dt without gravity, m/s^2
-  std::vector<double> drho;   // drho/dt, kg/m^3/s
+  std::vector<Vec<D>> pos;   // m
+  std::vector<Vec<D>> vel;   // m/s
+  std::vector<double> rho;   // kg/m^3
+  std::vector<double> mass;  // kg
+  // Last shifting displacement, m (an output field). Kept only while keeps_shift (the level
+  // shifts its particles: keep_shift); otherwise empty and left out of the field list, which
+  // saves D doubles per particle.
+  std::vector<Vec<D>> shift;
+  std::vector<double> p;     // pressure, Pa
+  std::vector<Vec<D>> acc;   // dv/dt without gravity, m/s^2
+  std::vector<double> drho;  // drho/dt, kg/m^3/s
   std::vector<Vec<D>> pos0;
   std::vector<Vec<D>> vel0;
   std::vector<double> rho0;
+  bool keeps_shift = true;
 
   // The list of arrays: calls f(name, role, s.array...) with the same array of every set in
-  // `sets`, array after array. A new per-particle array is one line here.
+  // `sets`, array after array (shift only when every set keeps it). A new per-particle array is
+  // one line here.
   template <class F, class... Sets>
   static void zip_fields(F&& f, Sets&... sets) {
     f(std::string_view("id"), FieldRole::persistent, sets.id...);
@@ -63,7 +68,8 @@ struct ParticleSet {
     f(std::string_view("vel"), FieldRole::persistent, sets.vel...);
     f(std::string_view("rho"), FieldRole::persistent, sets.rho...);
     f(std::string_view("mass"), FieldRole::persistent, sets.mass...);
-    f(std::string_view("shift"), FieldRole::persistent, sets.shift...);
+    if ((sets.keeps_shift && ...))
+      f(std::string_view("shift"), FieldRole::persistent, sets.shift...);
     f(std::string_view("p"), FieldRole::derived, sets.p...);
     f(std::string_view("acc"), FieldRole::derived, sets.acc...);
     f(std::string_view("drho"), FieldRole::derived, sets.drho...);
@@ -85,6 +91,15 @@ struct ParticleSet {
   }
 
   std::size_t size() const { return pos.size(); }
+
+  // Keeps the shift array (sized to the particles, zero where new) or gives it back.
+  void keep_shift(bool on) {
+    keeps_shift = on;
+    if (on)
+      shift.resize(size());
+    else
+      std::vector<Vec<D>>().swap(shift);
+  }
 
   void resize(std::size_t n) {
     for_each_field([n](std::string_view, auto& v, FieldRole) { v.resize(n); });

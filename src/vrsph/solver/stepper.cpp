@@ -78,24 +78,26 @@ void corrector(Level<D>& L, double dt) {
       ps.rho[i] = wall_density(ps.rho0[i] * (2.0 - eps) / (2.0 + eps), rho0);
       return;
     }
+    Vec<D> dr{};     // the shifting displacement, kept in ps.shift for the outputs
     if (shifting) {  // from the half-step sums and velocity
-      ps.shift[i] = shifting_displacement<D>(prm.shifting, L.sf.grad_c[i], L.sf.div_r[i],
-                                             norm(ps.vel[i]), dt);
+      dr = shifting_displacement<D>(prm.shifting, L.sf.grad_c[i], L.sf.div_r[i], norm(ps.vel[i]),
+                                    dt);
+      if (ps.kind[i] == Kind::buffer && constrained) {
+        const Vec<D> nf = L.buffer_shift_normal[i];
+        dr -= dot(dr, nf) * nf;
+      }
+      ps.shift[i] = dr;
     }
     if (ps.kind[i] == Kind::buffer) {
-      if (shifting && constrained) {
-        const Vec<D> nf = L.buffer_shift_normal[i];
-        ps.shift[i] -= dot(ps.shift[i], nf) * nf;
-      }
       ps.rho[i] = ps.rho0[i];
       ps.vel[i] = ps.vel0[i];
-      ps.pos[i] = ps.pos0[i] + dt * ps.vel0[i] + ps.shift[i];
+      ps.pos[i] = ps.pos0[i] + dt * ps.vel0[i] + dr;
       return;
     }
     const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
     ps.rho[i] = ps.rho0[i] * (2.0 - eps) / (2.0 + eps);
     ps.vel[i] = ps.vel0[i] + dt * (ps.acc[i] + prm.gravity);
-    ps.pos[i] = ps.pos0[i] + (0.5 * dt) * (ps.vel0[i] + ps.vel[i]) + ps.shift[i];
+    ps.pos[i] = ps.pos0[i] + (0.5 * dt) * (ps.vel0[i] + ps.vel[i]) + dr;
   });
 }
 
