@@ -3,6 +3,7 @@
 // blocks (particles/candidate_block.hpp): the surface passes and the force pass share one copy.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -21,7 +22,9 @@ struct LevelColumns {
   const Vec<D>* pos = nullptr;
   std::array<std::vector<double>, D> v;       // velocity
   std::vector<double> rho_dev, p, vol, mass;  // rho - rho0, p from the EOS, vol = m / rho
-  std::vector<double> wall_vol;               // the volume seen by a wall's continuity sum
+  // The volume seen by a wall's continuity sum (solver/forces.cpp): vol but 0 for buffer
+  // particles, so empty (the passes read vol) while the set holds no buffer particle.
+  std::vector<double> wall_vol;
   // Float copies of the non-position columns, for the mixed precision's candidate blocks
   // (core/precision.hpp); empty in double precision, while in mixed precision the double
   // columns stay empty.
@@ -63,7 +66,9 @@ struct LevelColumns {
       return;
     }
     for (int k = 0; k < D; ++k) v[k].resize(n);
-    for (auto* c : {&rho_dev, &p, &vol, &mass, &wall_vol}) c->resize(n);
+    for (auto* c : {&rho_dev, &p, &vol, &mass}) c->resize(n);
+    const bool buffers = has_buffer(ps);
+    wall_vol.resize(buffers ? n : 0);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       for (int k = 0; k < D; ++k) v[k][i] = ps.vel[i][k];
       rho_dev[i] = ps.rho[i] - eos.rho0;  // exact (Sterbenz) while rho0 / 2 <= rho <= 2 rho0
@@ -71,7 +76,7 @@ struct LevelColumns {
       p[i] = ps.p[i];
       vol[i] = ps.mass[i] / ps.rho[i];
       mass[i] = ps.mass[i];
-      wall_vol[i] = wall_continuity_volume(vol[i], ps.kind[i] == Kind::buffer);
+      if (buffers) wall_vol[i] = wall_continuity_volume(vol[i], ps.kind[i] == Kind::buffer);
     });
   }
 
@@ -79,7 +84,9 @@ struct LevelColumns {
   void pack_floats(ParticleSet<D>& ps, const TaitEos& eos) {
     const std::size_t n = ps.size();
     for (int k = 0; k < D; ++k) f.v[k].resize(n);
-    for (auto* c : {&f.rho_dev, &f.p, &f.vol, &f.mass, &f.wall_vol}) c->resize(n);
+    for (auto* c : {&f.rho_dev, &f.p, &f.vol, &f.mass}) c->resize(n);
+    const bool buffers = has_buffer(ps);
+    f.wall_vol.resize(buffers ? n : 0);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       for (int k = 0; k < D; ++k) f.v[k][i] = static_cast<float>(ps.vel[i][k]);
       ps.p[i] = eos.pressure(ps.rho[i]);
@@ -88,8 +95,14 @@ struct LevelColumns {
       f.p[i] = static_cast<float>(ps.p[i]);
       f.vol[i] = static_cast<float>(vol_i);
       f.mass[i] = static_cast<float>(ps.mass[i]);
-      f.wall_vol[i] = static_cast<float>(wall_continuity_volume(vol_i, ps.kind[i] == Kind::buffer));
+      if (buffers)
+        f.wall_vol[i] =
+            static_cast<float>(wall_continuity_volume(vol_i, ps.kind[i] == Kind::buffer));
     });
+  }
+
+  static bool has_buffer(const ParticleSet<D>& ps) {
+    return std::find(ps.kind.begin(), ps.kind.end(), Kind::buffer) != ps.kind.end();
   }
 };
 

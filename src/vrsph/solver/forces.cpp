@@ -46,7 +46,7 @@ StateView<T, D> state_view(const LevelColumns<D>& c) {
   StateView<T, D> w;
   for (int k = 0; k < D; ++k) w.v[k] = s.v[k].data();
   w.rho_dev = s.rho_dev.data(), w.p = s.p.data(), w.vol = s.vol.data(), w.mass = s.mass.data();
-  w.wall_vol = s.wall_vol.data();
+  w.wall_vol = s.wall_vol.empty() ? w.vol : s.wall_vol.data();  // empty: no buffer particle
   return w;
 }
 
