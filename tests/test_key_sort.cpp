@@ -35,6 +35,12 @@ Sorted serial_sort(const std::vector<std::uint32_t>& keys, std::size_t nkeys) {
   return s;
 }
 
+std::vector<std::uint32_t> starts_of(const vrsph::KeyStarts& starts, std::size_t nkeys) {
+  std::vector<std::uint32_t> begin(nkeys + 1);
+  for (std::size_t k = 0; k <= nkeys; ++k) begin[k] = starts[k];
+  return begin;
+}
+
 void expect_same_for_all_thread_counts(const std::vector<std::uint32_t>& keys, std::size_t nkeys) {
   const Sorted want = serial_sort(keys, nkeys);
   const int before = vrsph::exec::thread_count();
@@ -42,8 +48,11 @@ void expect_same_for_all_thread_counts(const std::vector<std::uint32_t>& keys, s
     vrsph::exec::set_thread_count(threads);
     vrsph::KeySort sorter;
     Sorted got;
-    got.begin.assign(nkeys + 1, 12345);  // stale values must not survive
-    sorter.sort(keys, nkeys, got.begin, got.perm, got.dropped);
+    vrsph::KeyStarts starts;
+    starts.base.assign(nkeys + 1, 12345);  // stale values must not survive
+    starts.off.assign(nkeys + 1, 321);
+    sorter.sort(keys, nkeys, starts, got.perm, got.dropped);
+    got.begin = starts_of(starts, nkeys);
     EXPECT_EQ(got.perm, want.perm) << threads << " threads";
     EXPECT_EQ(got.begin, want.begin) << threads << " threads";
     EXPECT_EQ(got.dropped, want.dropped) << threads << " threads";
@@ -72,8 +81,9 @@ TEST(KeySort, ReversedAndRepeatedKeysMatchASerialStableSort) {
 }
 
 // Keys fuller than a 16-bit counter: one thread overflows its count, seven overflow only the
-// key's total (10,000 each); both fall back to 32-bit counters with the same result. A second
-// sort with the same sorter on ordinary keys takes the 16-bit counters again.
+// key's total (10,000 each); both fall back to 32-bit counters and starts with the same result.
+// A second sort with the same sorter on ordinary keys takes the narrow counters and the 16-bit
+// offsets again.
 TEST(KeySort, KeysHoldingMoreThan65535ParticlesMatchASerialStableSort) {
   std::mt19937 rng(11);
   const std::size_t n = 70000 + 2000, nkeys = 40;
@@ -83,12 +93,26 @@ TEST(KeySort, KeysHoldingMoreThan65535ParticlesMatchASerialStableSort) {
   expect_same_for_all_thread_counts(keys, nkeys);
   vrsph::KeySort sorter;
   Sorted got;
-  sorter.sort(keys, nkeys, got.begin, got.perm, got.dropped);
+  vrsph::KeyStarts starts;
+  sorter.sort(keys, nkeys, starts, got.perm, got.dropped);
+  EXPECT_EQ(starts.shift, 0);     // one 32-bit start per key
+  const std::size_t many = 4000;  // 18 particles per key, about 1,150 per run of 64 keys
   std::vector<std::uint32_t> few(n);
-  for (std::size_t i = 0; i < n; ++i) few[i] = static_cast<std::uint32_t>(i * nkeys / n);
-  sorter.sort(few, nkeys, got.begin, got.perm, got.dropped);
-  EXPECT_EQ(got.perm, serial_sort(few, nkeys).perm);
-  EXPECT_EQ(got.begin, serial_sort(few, nkeys).begin);
+  for (std::size_t i = 0; i < n; ++i) few[i] = static_cast<std::uint32_t>(i * many / n);
+  sorter.sort(few, many, starts, got.perm, got.dropped);
+  EXPECT_EQ(starts.shift, vrsph::KeyStarts::kShift);  // 16-bit offsets again
+  EXPECT_EQ(got.perm, serial_sort(few, many).perm);
+  EXPECT_EQ(starts_of(starts, many), serial_sort(few, many).begin);
+}
+
+// Keys that fit 16-bit counters in a run of keys that does not fit 16-bit offsets: 35,000 and
+// 36,000 particles in two neighbouring keys; the starts fall back to 32 bits per key.
+TEST(KeySort, RunsHoldingMoreThan65535ParticlesMatchASerialStableSort) {
+  const std::size_t n = 35000 + 36000 + 500, nkeys = 300;
+  std::vector<std::uint32_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i)
+    keys[i] = i < 500 ? static_cast<std::uint32_t>(i % 100) : (i < 35500 ? 130 : 131);
+  expect_same_for_all_thread_counts(keys, nkeys);
 }
 
 // Keys too full for 8-bit counters but not for 16-bit ones: 300 particles of one key, taken

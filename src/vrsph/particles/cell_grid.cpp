@@ -84,7 +84,6 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
         ncell_total_, cell_size_));
   }
   stride_ = {1, n_[0], n_[0] * n_[1]};
-  begin_.resize(2 * static_cast<std::size_t>(ncell_total_) + 1);  // filled by the sort
 }
 
 template <int D>
@@ -145,7 +144,7 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
     pcell_[i] = inside(ps.pos[i]) ? key(cell_of(ps.pos[i]), ps.kind[i]) : KeySort::kDropped;
   });
-  keysort_.sort(pcell_, begin_.size() - 1, begin_, perm_, dropped_);
+  keysort_.sort(pcell_, 2 * static_cast<std::size_t>(ncell_total_), starts_, perm_, dropped_);
   for (std::uint32_t i : dropped_) lost.push_back(ps.id[i]);
   const std::size_t kept = perm_.size();
   // Every carried array of the field list is gathered through the permutation into a spare

@@ -84,10 +84,10 @@ class CellGrid {
   std::int64_t cell_count() const { return ncell_total_; }
   // Index range of group g after the last sort: fluid first, then walls.
   std::uint32_t group_begin(Group g) const {
-    return begin_[static_cast<std::size_t>(g) * ncell_total_];
+    return starts_[static_cast<std::size_t>(g) * ncell_total_];
   }
   std::uint32_t group_end(Group g) const {
-    return begin_[(static_cast<std::size_t>(g) + 1) * ncell_total_];
+    return starts_[(static_cast<std::size_t>(g) + 1) * ncell_total_];
   }
   double cell_size() const { return cell_size_; }
   int reach() const { return reach_; }
@@ -102,13 +102,13 @@ class CellGrid {
     if constexpr (D == 2) {
       for (int dy = -reach_; dy <= reach_; ++dy) {
         const std::int64_t row = c + dy * stride_[1];
-        fn(begin_[row + lo], begin_[row + hi + 1]);
+        fn(starts_[row + lo], starts_[row + hi + 1]);
       }
     } else {
       for (int dz = -reach_; dz <= reach_; ++dz) {
         for (int dy = -reach_; dy <= reach_; ++dy) {
           const std::int64_t row = c + dy * stride_[1] + dz * stride_[2];
-          fn(begin_[row + lo], begin_[row + hi + 1]);
+          fn(starts_[row + lo], starts_[row + hi + 1]);
         }
       }
     }
@@ -132,7 +132,7 @@ class CellGrid {
   std::array<std::int64_t, 3> n_{1, 1, 1};       // cells per axis, ghosts included
   std::array<std::int64_t, 3> stride_{1, 1, 1};  // linear index strides
   std::int64_t ncell_total_ = 0;
-  std::vector<std::uint32_t> begin_;  // begin_[k]..begin_[k+1]: particles of key k = c + g*ncells
+  KeyStarts starts_;                  // starts_[k]..starts_[k+1]: particles of key k = c + g*ncells
   std::vector<std::uint32_t> pcell_;  // cell of each particle, then (during a sort) its key
   std::vector<std::uint32_t> perm_;
   std::size_t sorted_count_ = 0;  // particles before the last sort (what carry() accepts)

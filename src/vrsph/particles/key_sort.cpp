@@ -1,6 +1,7 @@
 #include "vrsph/particles/key_sort.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 #include "vrsph/exec/parallel.hpp"
@@ -55,21 +56,24 @@ bool KeySort::count_part(const std::vector<std::uint32_t>& keys, Part& part) {
   return total == part.last - part.first - static_cast<std::int64_t>(part.dropped.size());
 }
 
-// begin[k] = number of particles of key k; each part's count of k becomes the number of
-// particles of key k in the parts before it (its offset inside the key). False when a key holds
-// more particles than a counter of type C can reach (the offsets run up to the key's total).
-template <class C>
-bool KeySort::key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin) {
+// total[k] = number of particles of key k (k < nkeys); each part's count of k becomes the number
+// of particles of key k in the parts before it (its offset inside the key). The totals are summed
+// in 32 bits per range of keys and stored as Total. False when a key holds more particles than a
+// counter of type C can reach (the offsets run up to the key's total); Total is at least as wide
+// as C.
+template <class C, class Total>
+bool KeySort::key_totals(std::size_t nkeys, Total* total) {
+  static_assert(sizeof(Total) >= sizeof(C));
   constexpr std::int64_t kRange = 4096;
   const auto n = static_cast<std::int64_t>(nkeys);
   const std::int64_t ranges = (n + kRange - 1) / kRange;
   std::vector<std::uint8_t> fits(static_cast<std::size_t>(ranges), 1);
   exec::for_each(ranges, [&](std::int64_t r) {
     const std::int64_t a = r * kRange, b = std::min(n, a + kRange);
-    std::fill(begin.begin() + a, begin.begin() + b, 0u);
-    // restrict: 8-bit counters are of a character type, which may alias the totals otherwise,
-    // and the loop would reload every total after every counter store (not vectorised)
-    std::uint32_t* __restrict total = begin.data();
+    // restrict: 8-bit counters are of a character type, which may alias the sums otherwise,
+    // and the loop would reload every sum after every counter store (not vectorised)
+    std::array<std::uint32_t, kRange> sums{};
+    std::uint32_t* __restrict sum = sums.data();  // of keys a .. b - 1
     for (Part& part : parts_) {
       C* __restrict count = part.count<C>().data();  // from the window's first key, part.lo
       const std::int64_t first = part.lo;  // a local: a counter store may alias part.lo too
@@ -77,15 +81,66 @@ bool KeySort::key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin) {
       for (std::int64_t k = lo; k <= hi; ++k) {
         C& c = count[k - first];
         const std::uint32_t here = c;
-        c = static_cast<C>(total[k]);
-        total[k] += here;
+        c = static_cast<C>(sum[k - a]);
+        sum[k - a] += here;
       }
     }
     std::uint32_t top = 0;
-    for (std::int64_t k = a; k < b; ++k) top = std::max(top, total[k]);
+    for (std::int64_t k = a; k < b; ++k) {
+      top = std::max(top, sum[k - a]);
+      total[k] = static_cast<Total>(sum[k - a]);
+    }
     fits[r] = top <= std::numeric_limits<C>::max();
   });
   return std::all_of(fits.begin(), fits.end(), [](std::uint8_t f) { return f != 0; });
+}
+
+// From the key totals in starts.off (keys 0 .. nkeys, the last 0) to the starts: each run of
+// 2^shift keys scans its own totals into offsets and keeps its sum, and the run sums are scanned
+// into the runs' starts (in parallel over runs, then over ranges of runs). False when a run holds
+// more than 65,535 particles (its offsets would not fit in 16 bits).
+bool KeySort::run_scan(KeyStarts& starts, std::size_t nkeys, int parts) {
+  const std::size_t runs = (nkeys >> starts.shift) + 1;
+  const std::size_t width = std::size_t{1} << starts.shift;
+  starts.base.resize(runs + 1);
+  std::vector<std::uint8_t> fits(runs, 1);
+  exec::for_each(static_cast<std::int64_t>(runs), [&](std::int64_t q) {
+    const std::size_t a = static_cast<std::size_t>(q) * width;
+    const std::size_t b = std::min(nkeys + 1, a + width);
+    std::uint32_t s = 0;
+    for (std::size_t k = a; k < b; ++k) {
+      const std::uint32_t c = starts.off[k];
+      starts.off[k] = static_cast<std::uint16_t>(s);
+      s += c;
+    }
+    starts.base[static_cast<std::size_t>(q)] = s;
+    fits[static_cast<std::size_t>(q)] = s <= std::numeric_limits<std::uint16_t>::max();
+  });
+  if (std::find(fits.begin(), fits.end(), 0) != fits.end()) return false;
+  exclusive_scan(starts.base, runs, parts);
+  return true;
+}
+
+// The starts of every key from the counters of type C (turned into offsets inside each key on
+// the way): 16-bit offsets from 32-bit run starts while C is narrower than 32 bits and every run
+// fits, else one 32-bit start per key. False when C is too narrow or a run too full.
+template <class C>
+bool KeySort::starts_of(std::size_t nkeys, KeyStarts& starts) {
+  const int parts = static_cast<int>(parts_.size());
+  if constexpr (sizeof(C) < 4) {
+    starts.shift = KeyStarts::kShift;
+    starts.off.resize(nkeys + 1);
+    if (!key_totals<C>(nkeys, starts.off.data())) return false;
+    starts.off[nkeys] = 0;
+    return run_scan(starts, nkeys, parts);
+  } else {
+    starts.shift = 0;
+    starts.base.resize(nkeys + 1);
+    key_totals<C>(nkeys, starts.base.data());  // 32 bits hold any count
+    exclusive_scan(starts.base, nkeys, parts);
+    starts.off.assign(nkeys + 1, 0);
+    return true;
+  }
 }
 
 // begin[0..nkeys) from counts to starts, begin[nkeys] = total: each of `parts` key ranges sums
@@ -122,33 +177,33 @@ void KeySort::exclusive_scan(std::vector<std::uint32_t>& begin, std::size_t nkey
 // too full for them.
 template <class C>
 bool KeySort::sort_with(const std::vector<std::uint32_t>& keys, std::size_t nkeys,
-                        std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm) {
+                        KeyStarts& starts, std::vector<std::uint32_t>& perm) {
   const auto parts = static_cast<std::int64_t>(parts_.size());
   std::vector<std::uint8_t> fits(parts_.size(), 1);
   exec::for_each(parts, [&](std::int64_t t) { fits[t] = count_part<C>(keys, parts_[t]); });
   if (std::find(fits.begin(), fits.end(), 0) != fits.end()) return false;
-  if (!key_totals<C>(nkeys, begin)) return false;
-  exclusive_scan(begin, nkeys, static_cast<int>(parts));
-  perm.resize(begin[nkeys]);
+  if (!starts_of<C>(nkeys, starts)) return false;
+  perm.resize(starts[nkeys]);
   exec::for_each(parts, [&](std::int64_t t) {
     Part& part = parts_[t];
     C* __restrict offset = part.count<C>().data();  // restrict: as in count_part
     const std::uint32_t* __restrict key = keys.data();
-    const std::uint32_t* __restrict start = begin.data();
+    const std::uint32_t* __restrict base = starts.base.data();
+    const std::uint16_t* __restrict off = starts.off.data();
     std::uint32_t* __restrict sorted = perm.data();
     const std::int64_t lo = part.lo, last = part.last;
+    const int shift = starts.shift;
     for (std::int64_t i = part.first; i < last; ++i) {
       const std::uint32_t k = key[i];
       if (k == kDropped) continue;
-      sorted[start[k] + offset[k - lo]++] = static_cast<std::uint32_t>(i);
+      sorted[base[k >> shift] + off[k] + offset[k - lo]++] = static_cast<std::uint32_t>(i);
     }
   });
   return true;
 }
 
-void KeySort::sort(const std::vector<std::uint32_t>& keys, std::size_t nkeys,
-                   std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm,
-                   std::vector<std::uint32_t>& dropped) {
+void KeySort::sort(const std::vector<std::uint32_t>& keys, std::size_t nkeys, KeyStarts& starts,
+                   std::vector<std::uint32_t>& perm, std::vector<std::uint32_t>& dropped) {
   const auto n = static_cast<std::int64_t>(keys.size());
   const int parts = std::max(1, exec::thread_count());
   parts_.resize(static_cast<std::size_t>(parts));
@@ -157,13 +212,12 @@ void KeySort::sort(const std::vector<std::uint32_t>& keys, std::size_t nkeys,
     parts_[t].last = n * (t + 1) / parts;
   }
   exec::for_each(parts, [&](std::int64_t t) { window(keys, parts_[t]); });
-  begin.resize(nkeys + 1);
-  if (sort_with<std::uint8_t>(keys, nkeys, begin, perm)) {
+  if (sort_with<std::uint8_t>(keys, nkeys, starts, perm)) {
     for (Part& part : parts_) part.keep_only<std::uint8_t>();
-  } else if (sort_with<std::uint16_t>(keys, nkeys, begin, perm)) {
+  } else if (sort_with<std::uint16_t>(keys, nkeys, starts, perm)) {
     for (Part& part : parts_) part.keep_only<std::uint16_t>();
   } else {
-    sort_with<std::uint32_t>(keys, nkeys, begin, perm);  // 32 bits hold any count
+    sort_with<std::uint32_t>(keys, nkeys, starts, perm);  // 32 bits hold any count
     for (Part& part : parts_) part.keep_only<std::uint32_t>();
   }
   dropped.clear();

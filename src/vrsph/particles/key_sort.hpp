@@ -17,17 +17,29 @@
 
 namespace vrsph {
 
+// Where the particles of each key start after a sort, in about 2 bytes per key: a 32-bit start
+// per run of 2^shift keys and a 16-bit offset from it per key. A sort whose runs hold more than
+// 65,535 particles (or one key more than 65,535) takes one 32-bit start per key instead (shift
+// 0, offsets 0): the same starts, in 6 bytes per key.
+struct KeyStarts {
+  static constexpr int kShift = 6;  // runs of 64 keys: a few hundred particles at most
+  int shift = kShift;
+  std::vector<std::uint32_t> base;  // start of each run, then the total
+  std::vector<std::uint16_t> off;   // per key, and one past the last key
+  std::uint32_t operator[](std::size_t k) const { return base[k >> shift] + off[k]; }
+  std::size_t keys() const { return off.empty() ? 0 : off.size() - 1; }
+};
+
 class KeySort {
  public:
   // The key of a particle to drop; every other key is below nkeys, so nkeys < kDropped.
   static constexpr std::uint32_t kDropped = 0xFFFFFFFFu;
 
-  // keys[i] in [0, nkeys) or kDropped. On return begin has nkeys + 1 entries, begin[k] ..
-  // begin[k + 1] being the sorted positions of key k; perm[s] is the index of the particle at
-  // sorted position s; dropped lists the indices with key kDropped in increasing order.
-  void sort(const std::vector<std::uint32_t>& keys, std::size_t nkeys,
-            std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm,
-            std::vector<std::uint32_t>& dropped);
+  // keys[i] in [0, nkeys) or kDropped. On return starts[k] .. starts[k + 1] are the sorted
+  // positions of key k (k < nkeys); perm[s] is the index of the particle at sorted position s;
+  // dropped lists the indices with key kDropped in increasing order.
+  void sort(const std::vector<std::uint32_t>& keys, std::size_t nkeys, KeyStarts& starts,
+            std::vector<std::uint32_t>& perm, std::vector<std::uint32_t>& dropped);
 
  private:
   // Counters are as narrow as the fullest key allows: 8 bits while no key holds more than 255
@@ -56,14 +68,17 @@ class KeySort {
     void keep_only();
   };
   template <class C>
-  bool sort_with(const std::vector<std::uint32_t>& keys, std::size_t nkeys,
-                 std::vector<std::uint32_t>& begin, std::vector<std::uint32_t>& perm);
+  bool sort_with(const std::vector<std::uint32_t>& keys, std::size_t nkeys, KeyStarts& starts,
+                 std::vector<std::uint32_t>& perm);
+  template <class C>
+  bool starts_of(std::size_t nkeys, KeyStarts& starts);
   void window(const std::vector<std::uint32_t>& keys, Part& part);
   template <class C>
   bool count_part(const std::vector<std::uint32_t>& keys, Part& part);
-  template <class C>
-  bool key_totals(std::size_t nkeys, std::vector<std::uint32_t>& begin);
+  template <class C, class Total>
+  bool key_totals(std::size_t nkeys, Total* total);
   static void exclusive_scan(std::vector<std::uint32_t>& begin, std::size_t nkeys, int parts);
+  static bool run_scan(KeyStarts& starts, std::size_t nkeys, int parts);
 
   std::vector<Part> parts_;
 };
