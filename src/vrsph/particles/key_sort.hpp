@@ -27,7 +27,6 @@ struct KeyStarts {
   std::vector<std::uint32_t> base;  // start of each run, then the total
   std::vector<std::uint16_t> off;   // per key, and one past the last key
   std::uint32_t operator[](std::size_t k) const { return base[k >> shift] + off[k]; }
-  std::size_t keys() const { return off.empty() ? 0 : off.size() - 1; }
 };
 
 class KeySort {
