@@ -20,6 +20,7 @@ struct ShiftingParams {
   double coefficient = 0.05;       // A (dimensionless): 0.05 for lind, 2 for skillen by default
   double surface_threshold = 1.5;  // T (dimensionless): no shift where div r < T; 2.75 in 3D
 
+  bool on() const { return model != ShiftingModel::none; }  // the particles are shifted
   bool operator==(const ShiftingParams&) const = default;
 };
 
@@ -50,7 +51,7 @@ inline T position_divergence_pair(T vol_f, T r2) {
 template <int D>
 inline Vec<D> shifting_displacement(const ShiftingLevel& s, const Vec<D>& grad_c, double div_r,
                                     double speed, double dt) {
-  if (s.model == ShiftingModel::none || div_r < s.surface_threshold) return Vec<D>{};
+  if (!s.on() || div_r < s.surface_threshold) return Vec<D>{};
   const double scale =
       s.model == ShiftingModel::lind ? s.coefficient * s.h * s.h : s.coefficient * s.h * speed * dt;
   const double surface = (div_r - s.surface_threshold) / (D - s.surface_threshold);

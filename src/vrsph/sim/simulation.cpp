@@ -66,7 +66,7 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
     L.ps = level_particles<D>(spec, layout[k], L.prm, next_id,
                               k == 0 ? std::move(init0) : level_fill<D>(spec, layout[k].dp),
                               &wall_ids_[k]);
-    L.ps.keep_shift(L.prm.shifting.model != ShiftingModel::none);
+    L.ps.keep_shift(L.prm.shifting.on());
     next_id += L.ps.size();
     links[k].region = layout[k].region;
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);

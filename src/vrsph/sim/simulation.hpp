@@ -153,9 +153,7 @@ class Simulation {
   }
   const std::vector<double>& level_dts() const { return level_dt_; }
   void restore_level_dts(const std::vector<double>& dts);
-  bool has_surface_fields() const {
-    return params().sigma > 0.0 || params().shifting.model != ShiftingModel::none;
-  }
+  bool has_surface_fields() const { return params().sigma > 0.0 || params().shifting.on(); }
 
  private:
   void sort_particles(Level<D>& L);

@@ -63,7 +63,7 @@ void Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
   if (!has_surface_fields()) return;
   RefreshClock& clock = refresh_[0];  // one clock for all levels, as for dt
   const bool capillary = levels_[0].prm.sigma > 0.0 && clock.due(t_eval, corrector_stage);
-  const bool shifting = levels_[0].prm.shifting.model != ShiftingModel::none;
+  const bool shifting = levels_[0].prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return;
   const double t0 = now_seconds();
   surface_passes(capillary);
@@ -83,7 +83,7 @@ void Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corr
   Level<D>& L = levels_[k];
   RefreshClock& clock = refresh_[k];
   const bool capillary = L.prm.sigma > 0.0 && clock.due(t_eval, corrector_stage);
-  const bool shifting = L.prm.shifting.model != ShiftingModel::none;
+  const bool shifting = L.prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return;
   const double t0 = now_seconds();
   surface_pass_sums(L);

@@ -70,7 +70,7 @@ void corrector(Level<D>& L, double dt) {
   ParticleSet<D>& ps = L.ps;
   const SolverParams<D>& prm = L.prm;
   const double rho0 = prm.eos.rho0;
-  const bool shifting = prm.shifting.model != ShiftingModel::none;
+  const bool shifting = prm.shifting.on();
   const bool constrained = !L.buffer_shift_normal.empty();
   exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     if (ps.kind[i] == Kind::wall) {

@@ -97,7 +97,7 @@ template <int D>
 void LevelCoupling<D>::before_corrector(std::vector<Level<D>>& levels, std::size_t l) const {
   if (!multi_level()) return;
   Level<D>& L = levels[l];
-  if (L.prm.shifting.model == ShiftingModel::none) {  // the corrector shifts nothing
+  if (!L.prm.shifting.on()) {  // the corrector shifts nothing
     L.buffer_shift_normal.clear();
     return;
   }
