@@ -14,6 +14,7 @@
 
 #include "vrsph/output/atomic_file.hpp"
 #include "vrsph/particles/particles.hpp"
+#include "vrsph/physics/eos.hpp"
 
 namespace vrsph::output_fixtures {
 
@@ -53,14 +54,24 @@ inline std::vector<std::string> split_csv(const std::string& line) {
   return out;
 }
 
-// Four 2D particles of every kind with awkward (non-short) numbers; p is set.
+// The EOS the snapshot tests write pressures with (B = 14,285.7 Pa): p = 0 at 1000 kg/m^3.
+inline const TaitEos kEos(1000.0, 7.0, 10.0);
+
+// The pressure column a snapshot written with kEos holds.
+template <int D>
+std::vector<double> pressures(const ParticleSet<D>& ps) {
+  std::vector<double> p;
+  for (double rho : ps.rho) p.push_back(kEos.pressure(rho));
+  return p;
+}
+
+// Four 2D particles of every kind with awkward (non-short) numbers.
 inline ParticleSet<2> small_set_2d() {
   ParticleSet<2> ps;
   ps.push_back(7, Kind::fluid, {{0.1, 1.0 / 3.0}}, {{-2.5e-3, 1e-17}}, 1000.0000001, 2.5e-6);
   ps.push_back(3, Kind::wall, {{-4e-3, 0.0}}, {{0.0, 0.0}}, 999.5, 2.5e-6);
   ps.push_back(11, Kind::buffer, {{1e-300, -7.25}}, {{0.3, 0.4}}, 1001.0, 6.25e-7);
   ps.push_back(12, Kind::fluid, {{2.0, 3.0}}, {{3.0, 4.0}}, 1000.0, 1.0);
-  ps.p = {12.5, -0.1, 36.4, 1.0 / 7.0};
   return ps;
 }
 
@@ -68,7 +79,6 @@ inline ParticleSet<3> small_set_3d() {
   ParticleSet<3> ps;
   ps.push_back(1, Kind::fluid, {{0.1, 0.2, 0.3}}, {{1.0, 2.0, 2.0}}, 1000.0, 1e-9);
   ps.push_back(2, Kind::wall, {{-0.1, 0.2, -0.3}}, {{0.0, 0.0, 0.0}}, 1000.0, 1e-9);
-  ps.p = {5.0, 6.0};
   return ps;
 }
 

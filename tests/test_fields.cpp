@@ -27,7 +27,7 @@ namespace {
 
 // Fields of each role in ParticleSet, counted by hand: update these with the list.
 constexpr int kPersistentFields = 7;  // id kind pos vel rho mass shift
-constexpr int kDerivedFields = 3;     // p acc drho
+constexpr int kDerivedFields = 2;     // acc drho
 constexpr int kStepCopyFields = 3;    // pos0 vel0 rho0
 
 std::uint64_t mix(std::uint64_t x) {  // splitmix64
@@ -61,12 +61,14 @@ T value_of(std::uint64_t id, int field, std::string_view name) {
 }
 
 template <int D>
-ParticleSet<D> filled_set(std::size_t n, std::uint64_t seed, bool keeps_shift = true) {
+ParticleSet<D> filled_set(std::size_t n, std::uint64_t seed, bool keeps_shift = true,
+                          bool keeps_pos0 = true) {
   std::vector<std::uint64_t> ids(n);
   for (std::size_t k = 0; k < n; ++k) ids[k] = 5000 + 13 * k;
   std::shuffle(ids.begin(), ids.end(), std::mt19937_64(seed));
   ParticleSet<D> ps;
   ps.keep_shift(keeps_shift);
+  ps.keep_pos0(keeps_pos0);
   ps.resize(n);
   int field = 0;
   ps.for_each_field([&](std::string_view name, auto& v, FieldRole) {
@@ -236,12 +238,30 @@ TYPED_TEST(FieldListTest, WithoutShiftingTheShiftArrayStaysEmpty) {
   const std::vector<const ParticleSet<D>*> sets = {&ps, &other};
   const MergedLevels<D> m = merge_levels<D>(sets);
   EXPECT_TRUE(m.particles.shift.empty());
-  expect_fields(m.particles, carried, "merge");  // p, acc and drho are stale since the sort
+  expect_fields(m.particles, carried, "merge");  // acc and drho are stale since the sort
   ps.resize(ps.size() + 5);
   EXPECT_TRUE(ps.shift.empty());
   ps.keep_shift(true);
   ASSERT_EQ(ps.shift.size(), ps.size());
   for (const Vec<D>& d : ps.shift) EXPECT_EQ(norm(d), 0.0);
+}
+
+// A single-level run keeps no pos0 (the corrector does without it): the sort and the merge carry
+// every other field and leave it empty; the step copies are then vel0 and rho0 only.
+TYPED_TEST(FieldListTest, WithoutPos0TheStepCopiesAreTheRest) {
+  constexpr int D = TypeParam::value;
+  ParticleSet<D> ps = filled_set<D>(500, 14, true, false);
+  Vec<D> lo, hi;
+  for (int k = 0; k < D; ++k) lo[k] = -0.1, hi[k] = 1.1;
+  CellGrid<D> grid(lo, hi, 0.1, 2);
+  ASSERT_TRUE(grid.sort(ps).empty());
+  EXPECT_TRUE(ps.pos0.empty());
+  EXPECT_EQ(expect_fields(ps, carried, "sort").at(FieldRole::step_copy), kStepCopyFields - 1);
+  const ParticleSet<D> other = filled_set<D>(30, 15, true, false);
+  const std::vector<const ParticleSet<D>*> sets = {&ps, &other};
+  EXPECT_TRUE(merge_levels<D>(sets).particles.pos0.empty());
+  ps.keep_pos0(true);
+  ASSERT_EQ(ps.pos0.size(), ps.size());
 }
 
 }  // namespace

@@ -17,7 +17,6 @@ namespace {
 TEST(FluidSamples, TwoLevelDiameterUsesTheFinestCoveringLevel) {
   CaseSpec spec = test::load_case("droplet_vr_2d.toml", {"fluid_block.0.pressure=36.4"});
   Simulation<2> sim(spec);
-  sim.update_pressure();
   ASSERT_EQ(sim.level_count(), 2u);
   const double dp0 = sim.level(0).prm.dp, h0 = sim.level(0).prm.h, h1 = sim.level(1).prm.h;
   const auto points = interpolate_line(sim, spec.lines.front());

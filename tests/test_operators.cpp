@@ -154,7 +154,7 @@ TYPED_TEST(OperatorsTest, ContinuityGivesMinusRhoDivergence) {
     EXPECT_GT(st.pairs, 0u);
     double worst = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
-      EXPECT_EQ(ps.p[i], 0.0);
+      EXPECT_EQ(l.prm.eos.pressure(ps.rho[i]), 0.0);
       if (!l.interior[i]) continue;
       const double expected = -kRho0 * trace;
       EXPECT_LT(ps.drho[i], 0.0) << "expansion must lower the density";
@@ -201,7 +201,6 @@ TYPED_TEST(OperatorsTest, PressureAccelerationOfLinearPressure) {
     compute_forces(l.prm, ps, l.grid);
     double worst = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
-      EXPECT_NEAR(ps.p[i], p0 + dot(g_p, ps.pos[i] - centre), 1e-9 * l.prm.eos.b);
       if (!l.interior[i]) continue;
       const Vec<D> expected = g_p * (-1.0 / ps.rho[i]);
       worst = std::max(worst, norm(ps.acc[i] - expected) / norm(expected));

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -34,35 +35,44 @@ TEST(OutputLine, SelectsNearbyFluidParticlesSortedByS) {
   ps.push_back(7, Kind::fluid, {{-1.01, 0.0}}, zero, 1000, 1);  // before the start: out
   ps.push_back(8, Kind::fluid, {{1.0, 0.0}}, zero, 1000, 1);    // at the end, s = 2
   ps.push_back(9, Kind::buffer, {{0.2, 0.0}}, zero, 1000, 1);   // buffer mirrors: out
-  ps.p = {10, 20, 30, 40, 50, 60, 70, 80, 90};
+  for (std::size_t i = 0; i < ps.size(); ++i) ps.rho[i] = kEos.density(10.0 * double(i + 1));
   const std::vector<std::uint8_t> level{0, 0, 0, 1, 0, 0, 0, 0, 1};
   const Vec<2> from{{-1, 0}}, to{{1, 0}};
-  const auto samples = sample_line<2>(ps, level, from, to, 0.1);
+  const auto samples = sample_line<2>(ps, kEos, level, from, to, 0.1);
   std::vector<std::uint64_t> ids;
   for (const auto& q : samples) ids.push_back(q.id);
   EXPECT_EQ(ids, (std::vector<std::uint64_t>{2, 4, 1, 8}));
   EXPECT_NEAR(samples[0].s, 0.1, 1e-15);
   EXPECT_EQ(samples[1].level, 1);
-  EXPECT_EQ(samples[1].p, 40.0);
+  EXPECT_NEAR(samples[1].p, 40.0, 1e-9);
 
-  write_line_profile<2>(dir.path / "line.csv", ps, level, from, to, 0.1);
+  write_line_profile<2>(dir.path / "line.csv", ps, kEos, level, from, to, 0.1);
   const auto lines = lines_of(read_all(dir.path / "line.csv"));
   ASSERT_EQ(lines.size(), 5u);
   EXPECT_EQ(lines[0], "s,x,y,p,level");
-  EXPECT_EQ(lines[2], "1,0,0,40,1");
-  EXPECT_EQ(lines[4], "2,1,0,80,0");
-  EXPECT_THROW(sample_line<2>(ps, {}, from, from, 0.1), std::invalid_argument);
+  // Each row: s, x, y, the EOS pressure of the particle's density, level.
+  const auto row = [&](std::size_t k) {
+    std::vector<std::string> f;
+    std::stringstream in(lines[k]);
+    for (std::string cell; std::getline(in, cell, ',');) f.push_back(cell);
+    return f;
+  };
+  EXPECT_EQ(row(2)[0] + "," + row(2)[1] + "," + row(2)[2] + "," + row(2)[4], "1,0,0,1");
+  EXPECT_NEAR(std::stod(row(2)[3]), 40.0, 1e-9);
+  EXPECT_EQ(row(4)[0] + "," + row(4)[1] + "," + row(4)[2] + "," + row(4)[4], "2,1,0,0");
+  EXPECT_NEAR(std::stod(row(4)[3]), 80.0, 1e-9);
+  EXPECT_THROW(sample_line<2>(ps, kEos, {}, from, from, 0.1), std::invalid_argument);
 }
 
 TEST(OutputLine, ThreeDimensionalHeader) {
   TempDir dir;
   const ParticleSet<3> ps = small_set_3d();
-  write_line_profile<3>(dir.path / "line.csv", ps, {}, Vec<3>{{0, 0, 0}}, Vec<3>{{0.2, 0.4, 0.6}},
-                        1e-6);
+  write_line_profile<3>(dir.path / "line.csv", ps, kEos, {}, Vec<3>{{0, 0, 0}},
+                        Vec<3>{{0.2, 0.4, 0.6}}, 1e-6);
   const auto lines = lines_of(read_all(dir.path / "line.csv"));
   ASSERT_EQ(lines.size(), 2u);  // only the fluid particle at (0.1, 0.2, 0.3) lies on the line
   EXPECT_EQ(lines[0], "s,x,y,z,p,level");
-  EXPECT_TRUE(lines[1].ends_with(",0.1,0.2,0.3,5,0"));
+  EXPECT_TRUE(lines[1].ends_with(",0.1,0.2,0.3,0,0"));  // rho0: p = 0
 }
 
 TEST(OutputAtomic, ReplacesTargetAndLeavesNoTempFiles) {

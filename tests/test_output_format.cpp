@@ -99,7 +99,7 @@ std::map<std::string, VtpData> write_and_read(const ParticleSet<2>& ps, Snapshot
   TempDir dir;
   const std::vector<ExtraField> extras = extras_2d();
   const std::vector<std::uint8_t> level{0, 0, 1, 1};
-  write_vtp<2>(dir.path / "p.vtp", ps, extras, level, format);
+  write_vtp<2>(dir.path / "p.vtp", ps, kEos, extras, level, format);
   return read_vtp(read_all(dir.path / "p.vtp"));
 }
 
@@ -149,11 +149,9 @@ TEST(OutputFormat, ZlibManyBlocksAndTheHeaderVtkReads) {
   for (std::size_t i = 0; i < n; ++i)
     ps.push_back(i, Kind::fluid, {{0.001 * i, 1.0 / (i + 1.0)}}, {{std::sin(i * 1.0), 0.0}},
                  1000.0 + 1e-3 * i, 1e-6);
-  ps.p.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) ps.p[i] = 0.5 * i;
   TempDir dir;
-  write_vtp<2>(dir.path / "plain.vtp", ps, {}, {});
-  write_vtp<2>(dir.path / "zlib.vtp", ps, {}, {}, {.zlib = true});
+  write_vtp<2>(dir.path / "plain.vtp", ps, kEos, {}, {});
+  write_vtp<2>(dir.path / "zlib.vtp", ps, kEos, {}, {}, {.zlib = true});
   const std::string plain = read_all(dir.path / "plain.vtp");
   const std::string packed = read_all(dir.path / "zlib.vtp");
   EXPECT_NE(packed.find("compressor=\"vtkZLibDataCompressor\""), std::string::npos);
@@ -182,8 +180,8 @@ TEST(OutputFormat, Float32CsvHasFloatDigitsAndDoublePositions) {
   TempDir dir;
   const ParticleSet<2> ps = small_set_2d();
   const std::vector<ExtraField> extras = extras_2d();
-  write_particles_csv<2>(dir.path / "d.csv", ps, extras, {});
-  write_particles_csv<2>(dir.path / "f.csv", ps, extras, {}, {.float32 = true, .zlib = true});
+  write_particles_csv<2>(dir.path / "d.csv", ps, kEos, extras, {});
+  write_particles_csv<2>(dir.path / "f.csv", ps, kEos, extras, {}, {.float32 = true, .zlib = true});
   const auto wide = lines_of(read_all(dir.path / "d.csv"));
   const auto narrow = lines_of(read_all(dir.path / "f.csv"));
   ASSERT_EQ(narrow.size(), wide.size());

@@ -45,13 +45,13 @@ std::vector<std::string> with(std::vector<std::string> a, const std::vector<std:
 
 // Mean pressure within R/2 of the origin, over the fluid of every level.
 double inner_pressure(Simulation<2>& sim) {
-  sim.update_pressure();
   double sum = 0.0;
   int n = 0;
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     const ParticleSet<2>& ps = sim.level(l).ps;
     for (std::size_t i = 0; i < ps.size(); ++i)
-      if (ps.kind[i] == Kind::fluid && norm(ps.pos[i]) < 1e-3) sum += ps.p[i], ++n;
+      if (ps.kind[i] == Kind::fluid && norm(ps.pos[i]) < 1e-3)
+        sum += sim.params().eos.pressure(ps.rho[i]), ++n;
   }
   return n > 0 ? sum / n : std::nan("");
 }

@@ -84,7 +84,7 @@ TYPED_TEST(WallForceTest, IsMinusTheWallsForceOnTheFluid) {
   constexpr int D = TypeParam::value;
   for (ViscosityModel vm : {ViscosityModel::laminar, ViscosityModel::artificial}) {
     WallCloud<D> c(D == 2 ? 16 : 7, vm);
-    compute_forces(c.prm, c.ps, c.grid);  // acc without gravity; fills ps.p
+    compute_forces(c.prm, c.ps, c.grid);  // acc without gravity
     std::vector<Vec<D>> f;
     wall_reaction_forces(c.prm, c.ps, c.grid, f);
     Vec<D> on_fluid{}, on_walls{};

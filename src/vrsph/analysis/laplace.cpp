@@ -5,7 +5,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "vrsph/core/to_vec.hpp"
 #include "vrsph/output/line_profile.hpp"
 
 namespace vrsph {
@@ -65,22 +64,11 @@ LaplaceError laplace_error(std::span<const LineInterpSample<D>> samples, double 
   return laplace_error(s, p, expected, h_first, h_last);
 }
 
-template <int D>
-LaplaceError line_laplace_error(const ParticleSet<D>& ps, const OutputLine& line, double expected,
-                                double h, double dp) {
-  const auto samples = sample_line<D>(ps, {}, to_vec<D>(line.from), to_vec<D>(line.to), 0.5 * dp);
-  return laplace_error<D>(samples, expected, h, h);
-}
-
 template LaplaceError laplace_error<2>(std::span<const LineSample<2>>, double, double, double);
 template LaplaceError laplace_error<3>(std::span<const LineSample<3>>, double, double, double);
 template LaplaceError laplace_error<2>(std::span<const LineInterpSample<2>>, double, double,
                                        double);
 template LaplaceError laplace_error<3>(std::span<const LineInterpSample<3>>, double, double,
                                        double);
-template LaplaceError line_laplace_error<2>(const ParticleSet<2>&, const OutputLine&, double,
-                                            double, double);
-template LaplaceError line_laplace_error<3>(const ParticleSet<3>&, const OutputLine&, double,
-                                            double, double);
 
 }  // namespace vrsph

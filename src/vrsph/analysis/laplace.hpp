@@ -11,7 +11,6 @@
 
 #include "vrsph/output/line_profile.hpp"
 #include "vrsph/particles/particles.hpp"
-#include "vrsph/setup/case_spec.hpp"
 
 namespace vrsph {
 
@@ -43,11 +42,5 @@ LaplaceError laplace_error(std::span<const LineSample<D>> samples, double expect
 template <int D>
 LaplaceError laplace_error(std::span<const LineInterpSample<D>> samples, double expected,
                            double h_first, double h_last);
-
-// The same for the particles of one level along an [[output.line]] (within dp/2 of it, as the
-// line profile files); ps.p must be current.
-template <int D>
-LaplaceError line_laplace_error(const ParticleSet<D>& ps, const OutputLine& line, double expected,
-                                double h, double dp);
 
 }  // namespace vrsph

@@ -7,7 +7,7 @@ namespace vrsph {
 
 template <int D>
 ShepardSums<D> shepard_sums(const Vec<D>& x, const ParticleSet<D>& ps, const CellGrid<D>& grid,
-                            const WendlandC2<D>& kernel) {
+                            const WendlandC2<D>& kernel, const TaitEos& eos) {
   ShepardSums<D> s;
   std::int64_t c = 0;
   if (ps.size() == 0 || !grid.stencil_cell(x, c)) return s;
@@ -18,7 +18,7 @@ ShepardSums<D> shepard_sums(const Vec<D>& x, const ParticleSet<D>& ps, const Cel
       if (r2 >= kernel.support2) continue;
       const double vw = ps.mass[j] / ps.rho[j] * kernel.w(std::sqrt(r2));
       s.s += vw;
-      s.p += ps.p[j] * vw;
+      s.p += eos.pressure(ps.rho[j]) * vw;
       s.rho += ps.rho[j] * vw;
       s.vel += ps.vel[j] * vw;
     }
@@ -40,9 +40,9 @@ FluidPoint<D> shepard_point(const ShepardSums<D>& s, int level) {
 }
 
 template ShepardSums<2> shepard_sums<2>(const Vec<2>&, const ParticleSet<2>&, const CellGrid<2>&,
-                                        const WendlandC2<2>&);
+                                        const WendlandC2<2>&, const TaitEos&);
 template ShepardSums<3> shepard_sums<3>(const Vec<3>&, const ParticleSet<3>&, const CellGrid<3>&,
-                                        const WendlandC2<3>&);
+                                        const WendlandC2<3>&, const TaitEos&);
 template FluidPoint<2> shepard_point<2>(const ShepardSums<2>&, int);
 template FluidPoint<3> shepard_point<3>(const ShepardSums<3>&, int);
 

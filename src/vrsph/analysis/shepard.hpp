@@ -10,7 +10,7 @@
 // within h of a free surface, where the support is one-sided (tests/test_shepard.cpp).
 // S is about 1 inside the fluid and falls through 1/2 at a free surface (on a flat lattice face,
 // near the plane dp/2 beyond the outer row): points with S < kShepardInside lie outside the fluid.
-// The grid must have been sorted since the particles last moved, and ps.p must be current.
+// p_j = p(rho_j) from the EOS. The grid must have been sorted since the particles last moved.
 #pragma once
 
 #include "vrsph/core/kernel.hpp"
@@ -18,6 +18,7 @@
 #include "vrsph/output/fluid_point.hpp"
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
+#include "vrsph/physics/eos.hpp"
 
 namespace vrsph {
 
@@ -43,7 +44,7 @@ struct ShepardSums {
 // The sums at x over the Kind::fluid particles of ps (zero when none is within 2h).
 template <int D>
 ShepardSums<D> shepard_sums(const Vec<D>& x, const ParticleSet<D>& ps, const CellGrid<D>& grid,
-                            const WendlandC2<D>& kernel);
+                            const WendlandC2<D>& kernel, const TaitEos& eos);
 
 // The interpolated values of sums s, attributed to `level`; outside (level -1, no values) when
 // s.s < kShepardInside.

@@ -35,7 +35,7 @@ FluidPoint<D> sample_fluid(const Simulation<D>& sim, const Vec<D>& x) {
   double best_s = 0.0;
   for (std::size_t l : finest_first(sim)) {
     const auto& L = sim.level(l);
-    const ShepardSums<D> s = shepard_sums<D>(x, L.ps, L.grid, L.prm.kernel);
+    const ShepardSums<D> s = shepard_sums<D>(x, L.ps, L.grid, L.prm.kernel, L.prm.eos);
     if (s.s >= kShepardInside) return shepard_point<D>(s, static_cast<int>(l));
     total.add(s);
     if (s.s > best_s) {

@@ -4,8 +4,7 @@
 // (Shepard sum >= kShepardInside); where no level covers it alone but their sums together do (at
 // a resolution interface, where each level's fluid ends about half-way through the support) the
 // levels' sums are added, and the point is attributed to the level with the largest sum. A point
-// that no fluid covers is outside (FluidPoint::level = -1). ps.p of every level must be current
-// (Simulation::update_pressure) and the grids sorted.
+// that no fluid covers is outside (FluidPoint::level = -1). The grids must be sorted.
 #pragma once
 
 #include <span>

@@ -17,7 +17,8 @@ std::vector<LineSample<D>> sample_levels(const Simulation<D>& sim, const OutputL
   std::vector<LineSample<D>> all;
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     const auto& L = sim.level(l);
-    auto s = sample_line<D>(L.ps, {}, to_vec<D>(line.from), to_vec<D>(line.to), 0.5 * L.prm.dp);
+    auto s = sample_line<D>(L.ps, L.prm.eos, {}, to_vec<D>(line.from), to_vec<D>(line.to),
+                            0.5 * L.prm.dp);
     for (auto& q : s) q.level = static_cast<int>(l);
     all.insert(all.end(), s.begin(), s.end());
   }

@@ -125,6 +125,7 @@ RunState restore_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
     auto& L = sim.level(l);
     ck.get_particles<D>(static_cast<int>(l), L.ps);
     L.ps.keep_shift(L.prm.shifting.on());
+    L.ps.keep_pos0(levels > 1);
     if (levels > 1) {
       const auto& m = ck.f64(fmt::format("level{}.point_mass", l));
       if (m.size() != sim.link(l).mass_points.size())

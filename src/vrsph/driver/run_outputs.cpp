@@ -187,7 +187,6 @@ RunOutputs<D>::RunOutputs(const CaseSpec& spec, std::filesystem::path dir, bool 
 
 template <int D>
 void RunOutputs<D>::write(Simulation<D>& sim, int index) {
-  sim.update_pressure();
   write_snapshot(sim, index);
   SeriesInputs in;
   write_lines(sim, index, in);
@@ -210,18 +209,19 @@ void RunOutputs<D>::write_snapshot(Simulation<D>& sim, int index) {
   const ParticleSet<D>& ps = nl > 1 ? merged.particles : sim.particles();
   const std::span<const std::uint8_t> level(merged.level);  // empty: single level, all 0
   const std::vector<ExtraField> extra_fields = surface_extras(sim);
+  const TaitEos& eos = sim.params().eos;  // one EOS for all levels (sim/level_setup.cpp)
   const std::span<const ExtraField> extras(extra_fields);
   SnapshotFormat format;
   format.float32 = spec_.output_precision == OutputPrecision::float32;
   format.zlib = spec_.output_compression == OutputCompression::zlib;
   if (spec_.write_vtp) {
     const std::string name = snapshot_file_name(index, "vtp");
-    write_vtp<D>(dir_ / name, ps, extras, level, format);
+    write_vtp<D>(dir_ / name, ps, eos, extras, level, format);
     pvd_.add(sim.time(), name);
     pvd_.write();
   }
   if (spec_.write_csv)
-    write_particles_csv<D>(dir_ / snapshot_file_name(index, "csv"), ps, extras, level, format);
+    write_particles_csv<D>(dir_ / snapshot_file_name(index, "csv"), ps, eos, extras, level, format);
 }
 
 template <int D>

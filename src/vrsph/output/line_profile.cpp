@@ -12,7 +12,7 @@
 namespace vrsph {
 
 template <int D>
-std::vector<LineSample<D>> sample_line(const ParticleSet<D>& ps,
+std::vector<LineSample<D>> sample_line(const ParticleSet<D>& ps, const TaitEos& eos,
                                        std::span<const std::uint8_t> level, const Vec<D>& from,
                                        const Vec<D>& to, double half_width) {
   if (!level.empty() && level.size() != ps.size())
@@ -28,7 +28,7 @@ std::vector<LineSample<D>> sample_line(const ParticleSet<D>& ps,
     const double s = dot(r, e);
     if (s < 0.0 || s > length) continue;
     if (norm2(r - s * e) > half_width * half_width) continue;
-    out.push_back({s, ps.pos[i], ps.p[i], level.empty() ? 0 : level[i], ps.id[i]});
+    out.push_back({s, ps.pos[i], eos.pressure(ps.rho[i]), level.empty() ? 0 : level[i], ps.id[i]});
   }
   std::sort(out.begin(), out.end(), [](const LineSample<D>& a, const LineSample<D>& b) {
     return a.s < b.s || (a.s == b.s && a.id < b.id);
@@ -51,9 +51,9 @@ void write_line_samples(const std::filesystem::path& path, std::span<const LineS
 
 template <int D>
 void write_line_profile(const std::filesystem::path& path, const ParticleSet<D>& ps,
-                        std::span<const std::uint8_t> level, const Vec<D>& from, const Vec<D>& to,
-                        double half_width) {
-  const std::vector<LineSample<D>> samples = sample_line(ps, level, from, to, half_width);
+                        const TaitEos& eos, std::span<const std::uint8_t> level, const Vec<D>& from,
+                        const Vec<D>& to, double half_width) {
+  const std::vector<LineSample<D>> samples = sample_line(ps, eos, level, from, to, half_width);
   write_line_samples<D>(path, samples);
 }
 
@@ -101,25 +101,25 @@ std::string line_interp_file_name(std::string_view name, int index) {
   return fmt::format("line_{}_interp_{:04d}.csv", name, index);
 }
 
-template std::vector<LineSample<2>> sample_line<2>(const ParticleSet<2>&,
+template std::vector<LineSample<2>> sample_line<2>(const ParticleSet<2>&, const TaitEos&,
                                                    std::span<const std::uint8_t>, const Vec<2>&,
                                                    const Vec<2>&, double);
 template void write_line_samples<2>(const std::filesystem::path&, std::span<const LineSample<2>>);
 template void write_line_profile<2>(const std::filesystem::path&, const ParticleSet<2>&,
-                                    std::span<const std::uint8_t>, const Vec<2>&, const Vec<2>&,
-                                    double);
+                                    const TaitEos&, std::span<const std::uint8_t>, const Vec<2>&,
+                                    const Vec<2>&, double);
 template std::vector<LineInterpSample<2>> line_points<2>(const Vec<2>&, const Vec<2>&, double);
 template std::vector<LineInterpSample<3>> line_points<3>(const Vec<3>&, const Vec<3>&, double);
 template void write_line_interp<2>(const std::filesystem::path&,
                                    std::span<const LineInterpSample<2>>);
 template void write_line_interp<3>(const std::filesystem::path&,
                                    std::span<const LineInterpSample<3>>);
-template std::vector<LineSample<3>> sample_line<3>(const ParticleSet<3>&,
+template std::vector<LineSample<3>> sample_line<3>(const ParticleSet<3>&, const TaitEos&,
                                                    std::span<const std::uint8_t>, const Vec<3>&,
                                                    const Vec<3>&, double);
 template void write_line_samples<3>(const std::filesystem::path&, std::span<const LineSample<3>>);
 template void write_line_profile<3>(const std::filesystem::path&, const ParticleSet<3>&,
-                                    std::span<const std::uint8_t>, const Vec<3>&, const Vec<3>&,
-                                    double);
+                                    const TaitEos&, std::span<const std::uint8_t>, const Vec<3>&,
+                                    const Vec<3>&, double);
 
 }  // namespace vrsph

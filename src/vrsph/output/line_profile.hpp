@@ -18,6 +18,7 @@
 
 #include "vrsph/output/fluid_point.hpp"
 #include "vrsph/particles/particles.hpp"
+#include "vrsph/physics/eos.hpp"
 
 namespace vrsph {
 
@@ -30,18 +31,19 @@ struct LineSample {
   std::uint64_t id = 0;
 };
 
-// The selected particles, sorted by s. `level` empty means all level 0. Throws
+// The selected particles, sorted by s, each with its pressure from the EOS. `level` empty means
+// all level 0. Throws
 // std::invalid_argument if from == to or `level` has the wrong size.
 template <int D>
-std::vector<LineSample<D>> sample_line(const ParticleSet<D>& ps,
+std::vector<LineSample<D>> sample_line(const ParticleSet<D>& ps, const TaitEos& eos,
                                        std::span<const std::uint8_t> level, const Vec<D>& from,
                                        const Vec<D>& to, double half_width);
 
 // Writes sample_line(...) as CSV, atomically. Callers pass half_width = dp / 2.
 template <int D>
 void write_line_profile(const std::filesystem::path& path, const ParticleSet<D>& ps,
-                        std::span<const std::uint8_t> level, const Vec<D>& from, const Vec<D>& to,
-                        double half_width);
+                        const TaitEos& eos, std::span<const std::uint8_t> level, const Vec<D>& from,
+                        const Vec<D>& to, double half_width);
 
 // Writes already selected samples (e.g. merged from several levels) as CSV, atomically.
 template <int D>

@@ -60,13 +60,10 @@ std::string xml_unescape(std::string_view s) {
 }
 
 void check_snapshot_inputs(std::size_t n, std::span<const ExtraField> extras,
-                           std::span<const std::uint8_t> level, std::size_t n_pressure) {
+                           std::span<const std::uint8_t> level) {
   if (!level.empty() && level.size() != n)
     throw std::invalid_argument(
         fmt::format("snapshot: level has {} entries for {} particles", level.size(), n));
-  if (n_pressure != n)
-    throw std::invalid_argument(
-        fmt::format("snapshot: p has {} entries for {} particles", n_pressure, n));
   for (const ExtraField& f : extras) {
     if (f.name.empty() || f.components < 1)
       throw std::invalid_argument("snapshot: extra field needs a name and components >= 1");
@@ -104,15 +101,15 @@ std::string csv_header(std::span<const ExtraField> extras) {
 
 // One CSV row for particle i, appended to `buf`; the fields after the position as Real.
 template <class Real, int D>
-void csv_row(fmt::memory_buffer& buf, const ParticleSet<D>& ps, std::size_t i, int level,
-             std::span<const ExtraField> extras) {
+void csv_row(fmt::memory_buffer& buf, const ParticleSet<D>& ps, const TaitEos& eos, std::size_t i,
+             int level, std::span<const ExtraField> extras) {
   auto out = fmt::appender(buf);
   auto field = [&out](double v) { fmt::format_to(out, ",{}", static_cast<Real>(v)); };
   fmt::format_to(out, "{},{},{}", ps.id[i], level, kind_name(ps.kind[i]));
   for (int k = 0; k < D; ++k) fmt::format_to(out, ",{}", ps.pos[i][k]);
   for (int k = 0; k < D; ++k) field(ps.vel[i][k]);
   field(ps.rho[i]);
-  field(ps.p[i]);
+  field(eos.pressure(ps.rho[i]));
   field(ps.mass[i]);
   for (const ExtraField& f : extras)
     for (int c = 0; c < f.components; ++c) field(f.values[i * f.components + c]);
@@ -123,18 +120,18 @@ void csv_row(fmt::memory_buffer& buf, const ParticleSet<D>& ps, std::size_t i, i
 
 template <int D>
 void write_particles_csv(const std::filesystem::path& path, const ParticleSet<D>& ps,
-                         std::span<const ExtraField> extras, std::span<const std::uint8_t> level,
-                         SnapshotFormat format) {
-  check_snapshot_inputs(ps.size(), extras, level, ps.p.size());
+                         const TaitEos& eos, std::span<const ExtraField> extras,
+                         std::span<const std::uint8_t> level, SnapshotFormat format) {
+  check_snapshot_inputs(ps.size(), extras, level);
   fmt::memory_buffer buf;
   const std::string header = csv_header<D>(extras);
   buf.append(header.data(), header.data() + header.size());
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const int l = level.empty() ? 0 : level[i];
     if (format.float32)
-      csv_row<float>(buf, ps, i, l, extras);
+      csv_row<float>(buf, ps, eos, i, l, extras);
     else
-      csv_row<double>(buf, ps, i, l, extras);
+      csv_row<double>(buf, ps, eos, i, l, extras);
   }
   write_file_atomic(path, std::string_view(buf.data(), buf.size()));
 }
@@ -146,14 +143,15 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
   for (const ParticleSet<D>* ps : levels) n += ps->size();
   m.particles.keeps_shift = std::all_of(levels.begin(), levels.end(),
                                         [](const ParticleSet<D>* ps) { return ps->keeps_shift; });
+  m.particles.keeps_pos0 = std::all_of(levels.begin(), levels.end(),
+                                       [](const ParticleSet<D>* ps) { return ps->keeps_pos0; });
   m.particles.resize(n);
   m.level.resize(n);
   std::size_t j = 0;
   for (std::size_t l = 0; l < levels.size(); ++l) {
     const ParticleSet<D>& ps = *levels[l];
     const std::size_t np = ps.size();
-    // Every array of the field list; one a level has not filled yet (p before the first
-    // pressure update) stays zero.
+    // Every array of the field list; one a level has not filled yet stays zero.
     ParticleSet<D>::zip_fields(
         [&](std::string_view, FieldRole, auto& out, const auto& in) {
           std::copy_n(in.begin(), std::min(np, in.size()),
@@ -167,11 +165,11 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
 }
 
 template void write_particles_csv<2>(const std::filesystem::path&, const ParticleSet<2>&,
-                                     std::span<const ExtraField>, std::span<const std::uint8_t>,
-                                     SnapshotFormat);
+                                     const TaitEos&, std::span<const ExtraField>,
+                                     std::span<const std::uint8_t>, SnapshotFormat);
 template void write_particles_csv<3>(const std::filesystem::path&, const ParticleSet<3>&,
-                                     std::span<const ExtraField>, std::span<const std::uint8_t>,
-                                     SnapshotFormat);
+                                     const TaitEos&, std::span<const ExtraField>,
+                                     std::span<const std::uint8_t>, SnapshotFormat);
 template MergedLevels<2> merge_levels<2>(std::span<const ParticleSet<2>* const>);
 template MergedLevels<3> merge_levels<3>(std::span<const ParticleSet<3>* const>);
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "vrsph/particles/particles.hpp"
+#include "vrsph/physics/eos.hpp"
 
 namespace vrsph {
 
@@ -36,7 +37,8 @@ struct SnapshotFormat {
   bool zlib = false;
 };
 
-// `level` gives the resolution level of each particle; empty means all level 0.
+// `level` gives the resolution level of each particle; empty means all level 0. The pressure is
+// written as the EOS `eos` gives it from each particle's density (it is not stored).
 // Both writers are atomic (temp file + rename) and throw std::runtime_error on I/O failure and
 // std::invalid_argument when an extra field or `level` has the wrong size.
 
@@ -45,7 +47,7 @@ struct SnapshotFormat {
 // PointData id, level, kind (0 fluid, 1 wall, 2 buffer), velocity (3 components), rho, p, mass,
 // then the extras.
 template <int D>
-void write_vtp(const std::filesystem::path& path, const ParticleSet<D>& ps,
+void write_vtp(const std::filesystem::path& path, const ParticleSet<D>& ps, const TaitEos& eos,
                std::span<const ExtraField> extras, std::span<const std::uint8_t> level,
                SnapshotFormat format = {});
 
@@ -53,8 +55,8 @@ void write_vtp(const std::filesystem::path& path, const ParticleSet<D>& ps,
 // numbers in shortest round-trip form (of the float32 value for the fields with format.float32).
 template <int D>
 void write_particles_csv(const std::filesystem::path& path, const ParticleSet<D>& ps,
-                         std::span<const ExtraField> extras, std::span<const std::uint8_t> level,
-                         SnapshotFormat format = {});
+                         const TaitEos& eos, std::span<const ExtraField> extras,
+                         std::span<const std::uint8_t> level, SnapshotFormat format = {});
 
 // "particles_0007.vtp" for (7, "vtp"): the snapshot file name of output number `index`.
 std::string snapshot_file_name(int index, std::string_view extension);

@@ -15,8 +15,8 @@ std::string xml_escape(std::string_view s);
 std::string xml_unescape(std::string_view s);
 
 // Throws std::invalid_argument unless every extra has a name, components >= 1 and
-// n * components values, `level` is empty or has n entries, and the pressure array has n entries.
+// n * components values and `level` is empty or has n entries.
 void check_snapshot_inputs(std::size_t n, std::span<const ExtraField> extras,
-                           std::span<const std::uint8_t> level, std::size_t n_pressure);
+                           std::span<const std::uint8_t> level);
 
 }  // namespace vrsph

@@ -89,7 +89,8 @@ void vert_arrays(std::size_t n, VtpArray& connectivity, VtpArray& offsets) {
 // The PointData arrays in contract order: id, level, kind, velocity, rho, p, mass, extras; the
 // fields after kind stored as Real.
 template <class Real, int D>
-std::vector<VtpArray> point_data(const ParticleSet<D>& ps, std::span<const ExtraField> extras,
+std::vector<VtpArray> point_data(const ParticleSet<D>& ps, const TaitEos& eos,
+                                 std::span<const ExtraField> extras,
                                  std::span<const std::uint8_t> level) {
   const std::size_t n = ps.size();
   std::vector<VtpArray> out;
@@ -101,7 +102,9 @@ std::vector<VtpArray> point_data(const ParticleSet<D>& ps, std::span<const Extra
   for (std::size_t i = 0; i < n; ++i) put(out.back(), i, static_cast<std::uint8_t>(ps.kind[i]));
   out.push_back(vec3_array<Real, D>("velocity", ps.vel));
   out.push_back(scalar_array<Real>("rho", ps.rho));
-  out.push_back(scalar_array<Real>("p", ps.p));
+  out.push_back(make_array<Real>("p", real_type<Real>(), 1, n));
+  for (std::size_t i = 0; i < n; ++i)
+    put(out.back(), i, static_cast<Real>(eos.pressure(ps.rho[i])));
   out.push_back(scalar_array<Real>("mass", ps.mass));
   for (const ExtraField& f : extras) out.push_back(extra_array<Real, D>(f, n));
   return out;
@@ -173,22 +176,22 @@ void write_vtp_file(const std::filesystem::path& path, std::size_t n, const VtpA
 }  // namespace
 
 template <int D>
-void write_vtp(const std::filesystem::path& path, const ParticleSet<D>& ps,
+void write_vtp(const std::filesystem::path& path, const ParticleSet<D>& ps, const TaitEos& eos,
                std::span<const ExtraField> extras, std::span<const std::uint8_t> level,
                SnapshotFormat format) {
-  check_snapshot_inputs(ps.size(), extras, level, ps.p.size());
+  check_snapshot_inputs(ps.size(), extras, level);
   VtpArrays arrays;
   arrays.points = vec3_array<double, D>("Points", ps.pos);
-  arrays.data = format.float32 ? point_data<float, D>(ps, extras, level)
-                               : point_data<double, D>(ps, extras, level);
+  arrays.data = format.float32 ? point_data<float, D>(ps, eos, extras, level)
+                               : point_data<double, D>(ps, eos, extras, level);
   vert_arrays(ps.size(), arrays.conn, arrays.offs);
   write_vtp_file(path, ps.size(), arrays, format.zlib);
 }
 
-template void write_vtp<2>(const std::filesystem::path&, const ParticleSet<2>&,
+template void write_vtp<2>(const std::filesystem::path&, const ParticleSet<2>&, const TaitEos&,
                            std::span<const ExtraField>, std::span<const std::uint8_t>,
                            SnapshotFormat);
-template void write_vtp<3>(const std::filesystem::path&, const ParticleSet<3>&,
+template void write_vtp<3>(const std::filesystem::path&, const ParticleSet<3>&, const TaitEos&,
                            std::span<const ExtraField>, std::span<const std::uint8_t>,
                            SnapshotFormat);
 

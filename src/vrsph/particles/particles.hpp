@@ -49,17 +49,21 @@ struct ParticleSet {
   // shifts its particles: keep_shift); otherwise empty and left out of the field list, which
   // saves D doubles per particle.
   std::vector<Vec<D>> shift;
-  std::vector<double> p;     // pressure, Pa
   std::vector<Vec<D>> acc;   // dv/dt without gravity, m/s^2
   std::vector<double> drho;  // drho/dt, kg/m^3/s
+  // Position at the step's start, m. The corrector does without it; only the level coupling of a
+  // multi-level run reads it (a donor's state within its step, a buffer particle's face at the
+  // step's start). Kept only while keeps_pos0 (keep_pos0); otherwise empty and left out of the
+  // field list, which saves D doubles per particle.
   std::vector<Vec<D>> pos0;
   std::vector<Vec<D>> vel0;
   std::vector<double> rho0;
   bool keeps_shift = true;
+  bool keeps_pos0 = true;
 
   // The list of arrays: calls f(name, role, s.array...) with the same array of every set in
-  // `sets`, array after array (shift only when every set keeps it). A new per-particle array is
-  // one line here.
+  // `sets`, array after array (shift and pos0 only when every set keeps them). A new per-particle
+  // array is one line here.
   template <class F, class... Sets>
   static void zip_fields(F&& f, Sets&... sets) {
     f(std::string_view("id"), FieldRole::persistent, sets.id...);
@@ -70,10 +74,9 @@ struct ParticleSet {
     f(std::string_view("mass"), FieldRole::persistent, sets.mass...);
     if ((sets.keeps_shift && ...))
       f(std::string_view("shift"), FieldRole::persistent, sets.shift...);
-    f(std::string_view("p"), FieldRole::derived, sets.p...);
     f(std::string_view("acc"), FieldRole::derived, sets.acc...);
     f(std::string_view("drho"), FieldRole::derived, sets.drho...);
-    f(std::string_view("pos0"), FieldRole::step_copy, sets.pos0...);
+    if ((sets.keeps_pos0 && ...)) f(std::string_view("pos0"), FieldRole::step_copy, sets.pos0...);
     f(std::string_view("vel0"), FieldRole::step_copy, sets.vel0...);
     f(std::string_view("rho0"), FieldRole::step_copy, sets.rho0...);
   }
@@ -93,13 +96,9 @@ struct ParticleSet {
   std::size_t size() const { return pos.size(); }
 
   // Keeps the shift array (sized to the particles, zero where new) or gives it back.
-  void keep_shift(bool on) {
-    keeps_shift = on;
-    if (on)
-      shift.resize(size());
-    else
-      std::vector<Vec<D>>().swap(shift);
-  }
+  void keep_shift(bool on) { keep_optional(on, keeps_shift, shift); }
+  // The same for pos0.
+  void keep_pos0(bool on) { keep_optional(on, keeps_pos0, pos0); }
 
   void resize(std::size_t n) {
     for_each_field([n](std::string_view, auto& v, FieldRole) { v.resize(n); });
@@ -146,6 +145,16 @@ struct ParticleSet {
     std::size_t c = 0;
     for (Kind x : kind) c += (x == k);
     return c;
+  }
+
+ private:
+  // An optional array: sized to the particles (zero where new) while on, given back when off.
+  void keep_optional(bool on, bool& flag, std::vector<Vec<D>>& v) {
+    flag = on;
+    if (on)
+      v.resize(size());
+    else
+      std::vector<Vec<D>>().swap(v);
   }
 };
 

@@ -67,6 +67,7 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
                               k == 0 ? std::move(init0) : level_fill<D>(spec, layout[k].dp),
                               &wall_ids_[k]);
     L.ps.keep_shift(L.prm.shifting.on());
+    L.ps.keep_pos0(layout.size() > 1);  // read by the level coupling only
     next_id += L.ps.size();
     links[k].region = layout[k].region;
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
@@ -154,14 +155,6 @@ template <int D>
 void Simulation<D>::resort() {
   for (Level<D>& L : levels_) L.ps.resize(L.ps.size());
   sort_all();
-}
-
-template <int D>
-void Simulation<D>::update_pressure() {
-  for (Level<D>& L : levels_) {
-    L.ps.p.resize(L.ps.size());
-    for (std::size_t i = 0; i < L.ps.size(); ++i) L.ps.p[i] = L.prm.eos.pressure(L.ps.rho[i]);
-  }
 }
 
 template <int D>

@@ -117,11 +117,8 @@ class Simulation {
   // fluid mass (vres/momentum.hpp).
   Vec<D> fluid_momentum(double& mass) const;
 
-  // Pressure of every particle from its current density (outputs).
-  void update_pressure();
-
   // The force of the fluid on each [[wall_block]] (case order), summed over the levels' wall
-  // particles of that block (solver/wall_reaction.hpp); ps.p must be current (update_pressure).
+  // particles of that block (solver/wall_reaction.hpp).
   std::vector<Vec<D>> wall_block_forces() const;
 
   // Recomputes lambda, normals, curvature, ... of every level for the current state (outputs);

@@ -52,15 +52,14 @@ struct LevelColumns {
     });
   }
 
-  // Copies the particle state and fills ps.p from the EOS on the way. The density is kept as
+  // Copies the particle state, with the pressure from the EOS. The density is kept as
   // its deviation rho - rho0: differences of two densities are then exact in float too. In mixed
   // precision the passes read only the float columns besides the positions, so the double
   // columns are left empty.
-  void pack(ParticleSet<D>& ps, const TaitEos& eos,
+  void pack(const ParticleSet<D>& ps, const TaitEos& eos,
             Precision precision = Precision::double_precision) {
     const std::size_t n = ps.size();
     pos = ps.pos.data();
-    ps.p.resize(n);
     if (precision == Precision::mixed) {
       pack_floats(ps, eos);
       return;
@@ -72,8 +71,7 @@ struct LevelColumns {
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       for (int k = 0; k < D; ++k) v[k][i] = ps.vel[i][k];
       rho_dev[i] = ps.rho[i] - eos.rho0;  // exact (Sterbenz) while rho0 / 2 <= rho <= 2 rho0
-      ps.p[i] = eos.pressure(ps.rho[i]);
-      p[i] = ps.p[i];
+      p[i] = eos.pressure(ps.rho[i]);
       vol[i] = ps.mass[i] / ps.rho[i];
       mass[i] = ps.mass[i];
       if (buffers) wall_vol[i] = wall_continuity_volume(vol[i], ps.kind[i] == Kind::buffer);
@@ -81,7 +79,7 @@ struct LevelColumns {
   }
 
  private:
-  void pack_floats(ParticleSet<D>& ps, const TaitEos& eos) {
+  void pack_floats(const ParticleSet<D>& ps, const TaitEos& eos) {
     const std::size_t n = ps.size();
     for (int k = 0; k < D; ++k) f.v[k].resize(n);
     for (auto* c : {&f.rho_dev, &f.p, &f.vol, &f.mass}) c->resize(n);
@@ -89,10 +87,9 @@ struct LevelColumns {
     f.wall_vol.resize(buffers ? n : 0);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       for (int k = 0; k < D; ++k) f.v[k][i] = static_cast<float>(ps.vel[i][k]);
-      ps.p[i] = eos.pressure(ps.rho[i]);
       const double vol_i = ps.mass[i] / ps.rho[i];
       f.rho_dev[i] = static_cast<float>(ps.rho[i] - eos.rho0);
-      f.p[i] = static_cast<float>(ps.p[i]);
+      f.p[i] = static_cast<float>(eos.pressure(ps.rho[i]));
       f.vol[i] = static_cast<float>(vol_i);
       f.mass[i] = static_cast<float>(ps.mass[i]);
       if (buffers)

@@ -35,8 +35,8 @@ template <int D>
 using ForceWorkspace = LevelColumns<D>;
 
 // ps.acc and ps.drho for every particle (acc = 0 on walls) from the columns `cols`, packed from
-// ps (LevelColumns::pack, which also fills ps.p). extra_acc (null: none) is a per-particle
-// acceleration added to the fluid's, e.g. surface tension; it counts in ForceStats::max_acc.
+// ps (LevelColumns::pack). extra_acc (null: none) is a per-particle acceleration added to the
+// fluid's, e.g. surface tension; it counts in ForceStats::max_acc.
 // buffer_reaction: buffer particles get the acceleration their level's fluid and buffer
 // neighbours exert on them (vres/momentum.hpp measures the coupling's net force from it);
 // otherwise their acc is 0.

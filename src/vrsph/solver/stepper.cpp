@@ -37,15 +37,17 @@ ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction) {
 // Predictor (dt/2): x+ = x + dt/2 v, v+ = v + dt/2 (a + g), rho+ = rho + dt/2 drho.
 // Walls keep position and velocity; their density is clamped at >= rho0 (physics/walls.hpp).
 // Buffer particles move with their velocity; their v and rho are imposed (from another level,
-// docs/physics.md section 10) and not integrated.
+// docs/physics.md section 10) and not integrated. v and rho at the step's start are kept for the
+// corrector, x only where the level coupling reads it (ps.keeps_pos0).
 template <int D>
 void predictor(Level<D>& L, double dt) {
   ParticleSet<D>& ps = L.ps;
   const double half = 0.5 * dt;
   const double rho0 = L.prm.eos.rho0;
   const Vec<D> g = L.prm.gravity;
+  const bool keep_x = ps.keeps_pos0;
   exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
-    ps.pos0[i] = ps.pos[i];
+    if (keep_x) ps.pos0[i] = ps.pos[i];
     ps.vel0[i] = ps.vel[i];
     ps.rho0[i] = ps.rho[i];
     if (ps.kind[i] == Kind::buffer) {
@@ -65,6 +67,9 @@ void predictor(Level<D>& L, double dt) {
 // Corrector: v' = v + dt (a+ + g), x' = x + dt (v + v')/2 + dr_shift,
 // rho' = rho (2 - eps)/(2 + eps), eps = -(drho+/rho+) dt. Buffer particles: x' = x + dt v +
 // dr_shift without its component along L.buffer_shift_normal; v and rho unchanged.
+// x' is formed from the half-step position x+ = x + dt/2 v the predictor left:
+// x' = x+ + dt/2 v' + dr_shift (fluid), x+ + dt/2 v + dr_shift (buffer), so the step's start
+// position need not be kept.
 template <int D>
 void corrector(Level<D>& L, double dt) {
   ParticleSet<D>& ps = L.ps;
@@ -91,13 +96,13 @@ void corrector(Level<D>& L, double dt) {
     if (ps.kind[i] == Kind::buffer) {
       ps.rho[i] = ps.rho0[i];
       ps.vel[i] = ps.vel0[i];
-      ps.pos[i] = ps.pos0[i] + dt * ps.vel0[i] + dr;
+      ps.pos[i] += (0.5 * dt) * ps.vel0[i] + dr;
       return;
     }
     const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
     ps.rho[i] = ps.rho0[i] * (2.0 - eps) / (2.0 + eps);
     ps.vel[i] = ps.vel0[i] + dt * (ps.acc[i] + prm.gravity);
-    ps.pos[i] = ps.pos0[i] + (0.5 * dt) * (ps.vel0[i] + ps.vel[i]) + dr;
+    ps.pos[i] += (0.5 * dt) * ps.vel[i] + dr;
   });
 }
 

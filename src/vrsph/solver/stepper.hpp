@@ -13,7 +13,7 @@
 
 namespace vrsph {
 
-// Packs the level's state into its columns (and fills ps.p): first stage of a force evaluation.
+// Packs the level's state into its columns: first stage of a force evaluation.
 template <int D>
 void pack_level(Level<D>& L);
 

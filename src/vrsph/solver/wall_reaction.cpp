@@ -20,7 +20,8 @@ Vec<D> wall_pair(const SolverParams<D>& prm, const ParticleSet<D>& ps, std::size
   const Vec<D> v_ij = ps.vel[i] - ps.vel[j];
   const double vij_dot_rij = dot(v_ij, r_ij);
   const PairReciprocals rec = pair_reciprocals(r2, prm.eta2, rho_i, rho_j);
-  double c = pressure_pair(ps.p[i], ps.p[j], vol_j, 1.0 / rho_i);
+  const double p_i = prm.eos.pressure(rho_i), p_j = prm.eos.pressure(rho_j);
+  double c = pressure_pair(p_i, p_j, vol_j, 1.0 / rho_i);
   if (prm.viscosity.model == ViscosityModel::artificial) {
     c += artificial_viscosity_pair(m_j, prm.viscosity.alpha_c0_h, vij_dot_rij, rec.inv_r2eta,
                                    rec.inv_rho_sum);

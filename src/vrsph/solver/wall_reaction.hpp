@@ -6,7 +6,7 @@
 // terms are antisymmetric once multiplied by the masses, m_i a_ij = -m_j a_ji, so F_i is exactly
 // minus the force that i exerts on the fluid in the force pass (forces.cpp): the momentum the
 // fluid gives the wall. A separate pass over the wall particles only, run at output times, so the
-// force pass keeps its cost. ps.p must be current and the grid sorted.
+// force pass keeps its cost. The pressures come from the EOS; the grid must be sorted.
 #pragma once
 
 #include <cstdint>
