@@ -264,5 +264,21 @@ TYPED_TEST(FieldListTest, WithoutPos0TheStepCopiesAreTheRest) {
   ASSERT_EQ(ps.pos0.size(), ps.size());
 }
 
+// The sort at the end of a single-level step leaves the step copies ungathered (the next
+// predictor rewrites them): every persistent field keeps its values, the copies keep their size.
+TYPED_TEST(FieldListTest, SortWithDeadStepCopiesCarriesTheState) {
+  constexpr int D = TypeParam::value;
+  ParticleSet<D> ps = filled_set<D>(900, 16);
+  Vec<D> lo, hi;
+  for (int k = 0; k < D; ++k) lo[k] = -0.1, hi[k] = 1.1;
+  CellGrid<D> grid(lo, hi, 0.1, 2);
+  ASSERT_TRUE(grid.sort(ps, false).empty());
+  EXPECT_EQ(expect_fields(ps, persistent_only, "sort").at(FieldRole::persistent),
+            kPersistentFields);
+  EXPECT_EQ(ps.vel0.size(), ps.size());
+  EXPECT_EQ(ps.rho0.size(), ps.size());
+  EXPECT_EQ(ps.pos0.size(), ps.size());
+}
+
 }  // namespace
 }  // namespace vrsph

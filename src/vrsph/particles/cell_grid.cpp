@@ -135,7 +135,7 @@ std::uint32_t CellGrid<D>::key(std::int64_t cell, Kind k) const {
 }
 
 template <int D>
-std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
+std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copies) {
   const std::size_t n = ps.size();
   sorted_count_ = n;
   std::vector<std::uint64_t> lost;
@@ -155,9 +155,12 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   using PS = ParticleSet<D>;
   spare_vec_.swap(ps.acc);  // lent for the sort; carry()'s spares wait in acc and drho meanwhile
   spare_f64_.swap(ps.drho);
+  const auto gathered = [step_copies](FieldRole role) {
+    return carried(role) && (step_copies || role != FieldRole::step_copy);
+  };
   PS::zip_fields(
       [&](std::string_view, FieldRole role, auto& a) {
-        if (!carried(role)) return;  // derived fields (p, acc, drho): resized below
+        if (!gathered(role)) return;  // derived fields (acc, drho), dead copies: resized below
         auto& spare = spare_for(a);
         spare.resize(kept);
         permute_into(a, perm_, spare);
@@ -167,8 +170,8 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps) {
   spare_vec_.swap(ps.acc);  // acc and drho take the storage the gathers left over
   spare_f64_.swap(ps.drho);
   PS::zip_fields(
-      [kept](std::string_view, FieldRole role, auto& a) {
-        if (!carried(role)) a.resize(kept);  // recomputed after every sort
+      [&](std::string_view, FieldRole role, auto& a) {
+        if (!gathered(role)) a.resize(kept);  // recomputed (rewritten) before they are read
       },
       ps);
   // The cell of each particle in its new place, from its position (the same function that gave

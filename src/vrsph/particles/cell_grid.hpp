@@ -49,8 +49,10 @@ class CellGrid {
   std::int64_t cell_of(const Vec<D>& x) const;  // linear index; x inside, after a sort
 
   // Sorts all particle arrays by cell (stable), after deleting particles outside the domain.
-  // Returns the ids of the deleted particles.
-  std::vector<std::uint64_t> sort(ParticleSet<D>& ps);
+  // Returns the ids of the deleted particles. With step_copies false the step copies (pos0,
+  // vel0, rho0) are dead, as after a single-level run's corrector (the next predictor writes
+  // them): they are resized like the derived arrays, not gathered.
+  std::vector<std::uint64_t> sort(ParticleSet<D>& ps, bool step_copies = true);
   // Reorders an array kept beside the particle arrays as the last sort reordered them (a per-
   // particle field that is not in the field list). An array not sized to the particles sorted
   // last is left alone. Instantiated for double and Vec<D>.

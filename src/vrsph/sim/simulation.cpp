@@ -123,9 +123,9 @@ Vec<D> Simulation<D>::fluid_momentum(double& mass) const {
 }
 
 template <int D>
-void Simulation<D>::sort_particles(Level<D>& L) {
+void Simulation<D>::sort_particles(Level<D>& L, bool step_copies) {
   const double t0 = now_seconds();
-  const auto lost = L.grid.sort(L.ps);
+  const auto lost = L.grid.sort(L.ps, step_copies);
   L.sf.carry(L.grid);
   times_.sort += now_seconds() - t0;
   if (lost.empty()) return;
@@ -147,8 +147,8 @@ void Simulation<D>::sort_particles(Level<D>& L) {
 }
 
 template <int D>
-void Simulation<D>::sort_all() {
-  for (Level<D>& L : levels_) sort_particles(L);
+void Simulation<D>::sort_all(bool step_copies) {
+  for (Level<D>& L : levels_) sort_particles(L, step_copies);
 }
 
 template <int D>
@@ -236,7 +236,7 @@ void Simulation<D>::step() {
   for (Level<D>& L : levels_) corrector(L, dt);
   times_.update += now_seconds() - t0;
   counters_.particle_steps += total_particles();
-  sort_all();
+  sort_all(coupling_.multi_level());  // step copies: read by the coupling only after the step
   if (coupling_.multi_level()) couple_levels(dt);
   t0 = now_seconds();
   advance_clock(plan, s);

@@ -153,8 +153,8 @@ class Simulation {
   bool has_surface_fields() const { return params().sigma > 0.0 || params().shifting.on(); }
 
  private:
-  void sort_particles(Level<D>& L);
-  void sort_all();
+  void sort_particles(Level<D>& L, bool step_copies = true);
+  void sort_all(bool step_copies = true);
   void check_state(const Level<D>& L) const;
   void check_dt() const;
   ForceStats evaluate_forces(double t_eval, bool corrector_stage);
