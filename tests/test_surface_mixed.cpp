@@ -3,7 +3,7 @@
 // against double on the same static drops, 2D and 3D, jittered and far from the origin: lambda,
 // grad C, div r, the Shepard sum, the normal, the curvature and the capillary acceleration
 // agree to float accuracy relative to each field's largest value, and the same particles get a
-// normal.
+// normal. Also: pass 2's skip of sure-zero normals changes no field.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -101,6 +101,48 @@ TEST(MixedSurfacePasses, CircleFarFromTheOriginAgreesWithDouble) {
 TEST(MixedSurfacePasses, SphereAgreesWithDoubleToFloatAccuracy) {
   const double dp = 2e-4;
   check_mixed_against_double<3>(jitter_and_shift(sphere_lattice(2e-3, dp), dp, 3.0), dp);
+}
+
+// Pass 2 skips the sweep of a particle whose normal is sure to vanish (a bound from G_i and the
+// block's lambda range, solver/surface_pass.cpp): the normals, curvature and capillary
+// acceleration are bit for bit those of sweeping every particle, in both precisions, and most
+// interior particles are skipped.
+template <int D>
+void check_skip_changes_nothing(const std::vector<Vec<D>>& pos, double dp, Precision precision) {
+  Static<D> a = make_static<D>(pos, dp), b = make_static<D>(pos, dp);
+  a.prm.precision = b.prm.precision = precision;
+  surface_sums(a.prm, a.ps, a.grid, a.sf);
+  surface_sums(b.prm, b.ps, b.grid, b.sf);
+  ASSERT_TRUE(a.sf.has_grad_w) << "surface tension on: pass 1 sums G";
+  b.sf.has_grad_w = false;  // no bound: every particle swept
+  surface_tension_force(a.prm, a.ps, a.grid, a.sf);
+  surface_tension_force(b.prm, b.ps, b.grid, b.sf);
+  std::size_t with_normal = 0, interior = 0;
+  for (std::size_t i = 0; i < a.ps.size(); ++i) {
+    for (int k = 0; k < D; ++k) {
+      EXPECT_EQ(a.sf.normal[i][k], b.sf.normal[i][k]) << i;
+      EXPECT_EQ(a.sf.acc_st[i][k], b.sf.acc_st[i][k]) << i;
+    }
+    EXPECT_EQ(a.sf.curvature[i], b.sf.curvature[i]) << i;
+    with_normal += norm2(a.sf.normal[i]) > 0.0;
+    interior += a.sf.lambda[i] > 0.95;
+  }
+  EXPECT_GT(with_normal, 0u);
+  EXPECT_GT(interior, a.ps.size() / 4) << "a drop with an interior, where the skip acts";
+}
+
+TEST(MixedSurfacePasses, NormalSkipChangesNothing2D) {
+  const double dp = 5e-5;
+  const auto pos = jitter_and_shift(droplet_circle(dp, "lattice"), dp, 0.0);
+  check_skip_changes_nothing<2>(pos, dp, Precision::mixed);
+  check_skip_changes_nothing<2>(pos, dp, Precision::double_precision);
+}
+
+TEST(MixedSurfacePasses, NormalSkipChangesNothing3D) {
+  const double dp = 2e-4;
+  const auto pos = jitter_and_shift(sphere_lattice(2e-3, dp), dp, 0.0);
+  check_skip_changes_nothing<3>(pos, dp, Precision::mixed);
+  check_skip_changes_nothing<3>(pos, dp, Precision::double_precision);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "vrsph/particles/candidate_block.hpp"
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/physics/surface_tension.hpp"
+#include "vrsph/solver/normal_bound.hpp"
 
 namespace vrsph {
 
@@ -18,6 +19,7 @@ void SurfaceFields<D>::resize(std::size_t n) {
   grad_c.assign(n, Vec<D>{});
   div_r.assign(n, 0.0);
   shepard.assign(n, 0.0);
+  grad_w.assign(n, 0.0);
   normal.resize(n);  // sized only: held values stay, and passes 2 and 3 write every entry
   curvature.resize(n);
   acc_st.resize(n);
@@ -102,9 +104,10 @@ const T* volume_column(const LevelColumns<D>& c) {
 }
 
 // Pass 1 of particle i over its block (columns x, V): M in s0..s2 (xx, xy, yy), grad C in s3, s4,
-// div r in s5, the Shepard sum in s6 and, in 3D only, M in s7..s9 (xz, yz, zz) and grad C in s10
-// (2D sums no zeros).
-template <int D, class T>
+// div r in s5, the Shepard sum in s6, G = sum_j V_j |grad_i W_ij| in s7 (2D) or s11 (3D) and, in
+// 3D only, M in s7..s9 (xz, yz, zz) and grad C in s10 (2D sums no zeros). G only with kGradW
+// (surface tension on: pass 2 reads it; shifting alone does not).
+template <int D, class T, bool kGradW>
 void pass1_particle(const SolverParams<D>& prm, const typename SurfaceBlock<D, 1, T>::Block& blk,
                     const T (&xi)[3], const T (&xi_lo)[3], double (&sum)[12]) {
   using S = SurfaceBlock<D, 1, T>;
@@ -124,11 +127,15 @@ void pass1_particle(const SolverParams<D>& prm, const typename SurfaceBlock<D, 1
       s.s8 = correction_matrix_pair(vf, g.ry, g.rz);
       s.s9 = correction_matrix_pair(vf, g.rz, g.rz);
       s.s10 = colour_gradient_pair(vf, g.rz);
+      if constexpr (kGradW) s.s11 = -vf * g.r;  // F <= 0: V_j |grad_i W_ij| = -V_j F r
+    } else if constexpr (kGradW) {
+      s.s7 = -vf * g.r;
     }
     return s;
   };
   double unused = -1e300;
-  sweep_pairs<D, S::K, D == 3 ? 11 : 7, false, S::KL>(
+  constexpr int kSums = (D == 3 ? 11 : 7) + (kGradW ? 1 : 0);
+  sweep_pairs<D, S::K, kSums, false, S::KL>(
       prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum, unused, xi_lo);
 }
 
@@ -150,6 +157,8 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   using S = SurfaceBlock<D, 1, T>;
   const S src(cols, {volume_column<T>(cols)});
   const double w0 = prm.kernel.w(0.0);
+  const bool grad_w = prm.sigma > 0.0;  // read by pass 2 only
+  sf.has_grad_w = grad_w;
   auto body = [&](std::int64_t ii, typename S::Block& blk) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
@@ -157,7 +166,10 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
     src.gather(blk, grid, grid.particle_cells()[i], Groups::all);
     T xi[3], xi_lo[3];
     frame_of(cols, i, blk, xi, xi_lo);
-    pass1_particle<D, T>(prm, blk, xi, xi_lo, s);
+    if (grad_w)
+      pass1_particle<D, T, true>(prm, blk, xi, xi_lo, s);
+    else
+      pass1_particle<D, T, false>(prm, blk, xi, xi_lo, s);
     Mat<D> m;
     Vec<D> grad_c;
     assemble_pass1<D>(s, m, grad_c);
@@ -167,6 +179,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
     sf.grad_c[i] = grad_c;
     sf.div_r[i] = s[5];
     sf.shepard[i] = shepard_pair(ps.mass[i] / ps.rho[i], w0) + s[6];  // self + neighbours
+    sf.grad_w[i] = s[D == 3 ? 11 : 7];
   };
   exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
@@ -185,14 +198,23 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     lambda_col = sf.lambda.data();
   }
   using S = SurfaceBlock<D, 2, T>;
+  using Scratch = NormalsScratch<T, typename S::Block>;
   const S src(cols, {volume_column<T>(cols), lambda_col});
-  auto body = [&](std::int64_t ii, typename S::Block& blk) {
+  auto body = [&](std::int64_t ii, Scratch& sc) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
     const double lambda_i = sf.lambda[i];
-    const T lambda_ref = static_cast<T>(
-        lambda_i >= prm.surface_tension.lambda_threshold ? lambda_i : 0.0);  // difference form
-    src.gather(blk, grid, grid.particle_cells()[i], Groups::fluid);
+    const bool difference = lambda_i >= prm.surface_tension.lambda_threshold;
+    const T lambda_ref = static_cast<T>(difference ? lambda_i : 0.0);  // difference form
+    const std::int64_t cell = grid.particle_cells()[i];
+    if (difference && sf.has_grad_w) {
+      lambda_range<D>(grid, cell, lambda_col, sc);
+      const double limit = prm.surface_tension.normal_epsilon * lambda_i / prm.h;
+      if (normal_surely_zero<D, T>(sc.lo, sc.hi, lambda_ref, sf.l_corr[i], sf.grad_w[i], limit))
+        return;  // the normal stays 0
+    }
+    auto& blk = sc.blk;
+    src.gather(blk, grid, cell, Groups::fluid);
     T xi[3], xi_lo[3];
     frame_of(cols, i, blk, xi, xi_lo);
     double s[12] = {}, unused = -1e300;
@@ -210,7 +232,7 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i,
                                                   prm.surface_tension.normal_epsilon, prm.h);
   };
-  exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
+  exec::for_each_with<Scratch>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
 
 // Pass 3 of particle i over its block (columns x, V, n): the curvature sums of

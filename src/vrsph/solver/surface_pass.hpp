@@ -23,6 +23,8 @@ struct SurfaceFields {
   std::vector<Vec<D>> grad_c;     // sum_j V_j grad_i W_ij
   std::vector<double> div_r;      // -sum_j V_j r_ij . grad_i W_ij
   std::vector<double> shepard;    // sum_j V_j W_ij, self included
+  std::vector<double> grad_w;     // G_i = sum_j V_j |grad_i W_ij| (bounds pass 2's sum)
+  bool has_grad_w = false;        // pass 1 summed grad_w (it does when sigma > 0)
   std::vector<Vec<D>> normal;     // unit outward normal, or 0
   std::vector<double> curvature;  // kappa_i
   std::vector<Vec<D>> acc_st;     // surface-tension acceleration
