@@ -52,7 +52,7 @@ PY
 done
 if command -v gnuplot > /dev/null; then
   gnuplot <<GP
-set terminal pngcairo size 800,500
+set terminal pngcairo size 800,500 noenhanced
 set output "$out/scaling.png"
 set datafile separator ","
 set logscale x
