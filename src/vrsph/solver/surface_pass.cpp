@@ -19,7 +19,6 @@ void SurfaceFields<D>::resize(std::size_t n) {
   grad_c.assign(n, Vec<D>{});
   div_r.assign(n, 0.0);
   shepard.assign(n, 0.0);
-  grad_w.assign(n, 0.0);
   normal.resize(n);  // sized only: held values stay, and passes 2 and 3 write every entry
   curvature.resize(n);
   acc_st.resize(n);
@@ -158,7 +157,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   const S src(cols, {volume_column<T>(cols)});
   const double w0 = prm.kernel.w(0.0);
   const bool grad_w = prm.sigma > 0.0;  // read by pass 2 only
-  sf.has_grad_w = grad_w;
+  sf.grad_w.assign(grad_w ? ps.size() : 0, 0.0);
   auto body = [&](std::int64_t ii, typename S::Block& blk) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
@@ -179,7 +178,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
     sf.grad_c[i] = grad_c;
     sf.div_r[i] = s[5];
     sf.shepard[i] = shepard_pair(ps.mass[i] / ps.rho[i], w0) + s[6];  // self + neighbours
-    sf.grad_w[i] = s[D == 3 ? 11 : 7];
+    if (grad_w) sf.grad_w[i] = s[D == 3 ? 11 : 7];
   };
   exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
@@ -207,7 +206,7 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     const bool difference = lambda_i >= prm.surface_tension.lambda_threshold;
     const T lambda_ref = static_cast<T>(difference ? lambda_i : 0.0);  // difference form
     const std::int64_t cell = grid.particle_cells()[i];
-    if (difference && sf.has_grad_w) {
+    if (difference && !sf.grad_w.empty()) {
       lambda_range<D>(grid, cell, lambda_col, sc);
       const double limit = prm.surface_tension.normal_epsilon * lambda_i / prm.h;
       if (normal_surely_zero<D, T>(sc.lo, sc.hi, lambda_ref, sf.l_corr[i], sf.grad_w[i], limit))

@@ -18,13 +18,14 @@ namespace vrsph {
 
 template <int D>
 struct SurfaceFields {
-  std::vector<double> lambda;     // smallest eigenvalue of M_i
-  std::vector<Mat<D>> l_corr;     // L_i = M_i^-1 (or I)
-  std::vector<Vec<D>> grad_c;     // sum_j V_j grad_i W_ij
-  std::vector<double> div_r;      // -sum_j V_j r_ij . grad_i W_ij
-  std::vector<double> shepard;    // sum_j V_j W_ij, self included
-  std::vector<double> grad_w;     // G_i = sum_j V_j |grad_i W_ij| (bounds pass 2's sum)
-  bool has_grad_w = false;        // pass 1 summed grad_w (it does when sigma > 0)
+  std::vector<double> lambda;   // smallest eigenvalue of M_i
+  std::vector<Mat<D>> l_corr;   // L_i = M_i^-1 (or I)
+  std::vector<Vec<D>> grad_c;   // sum_j V_j grad_i W_ij
+  std::vector<double> div_r;    // -sum_j V_j r_ij . grad_i W_ij
+  std::vector<double> shepard;  // sum_j V_j W_ij, self included
+  // G_i = sum_j V_j |grad_i W_ij|, which bounds pass 2's sum; pass 1 sums it only with surface
+  // tension on, and leaves it empty otherwise.
+  std::vector<double> grad_w;
   std::vector<Vec<D>> normal;     // unit outward normal, or 0
   std::vector<double> curvature;  // kappa_i
   std::vector<Vec<D>> acc_st;     // surface-tension acceleration
