@@ -124,8 +124,7 @@ RunState restore_checkpoint(Simulation<D>& sim, const Checkpoint& ck) {
   for (std::size_t l = 0; l < levels; ++l) {
     auto& L = sim.level(l);
     ck.get_particles<D>(static_cast<int>(l), L.ps);
-    L.ps.keep_shift(L.prm.shifting.on());
-    L.ps.keep_pos0(levels > 1);
+    sim.keep_optional_arrays(l);
     if (levels > 1) {
       const auto& m = ck.f64(fmt::format("level{}.point_mass", l));
       if (m.size() != sim.link(l).mass_points.size())

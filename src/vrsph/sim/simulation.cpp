@@ -66,8 +66,7 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
     L.ps = level_particles<D>(spec, layout[k], L.prm, next_id,
                               k == 0 ? std::move(init0) : level_fill<D>(spec, layout[k].dp),
                               &wall_ids_[k]);
-    L.ps.keep_shift(L.prm.shifting.on());
-    L.ps.keep_pos0(layout.size() > 1);  // read by the level coupling only
+    keep_optional_arrays(k);
     next_id += L.ps.size();
     links[k].region = layout[k].region;
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
@@ -101,6 +100,13 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
     dt_next_ = std::min(dt_next_, level_dt_at_start(L, setup_.c0).dt);
   start_local_stepping();
   start_refresh_clocks();
+}
+
+template <int D>
+void Simulation<D>::keep_optional_arrays(std::size_t k) {
+  Level<D>& L = levels_[k];
+  L.ps.keep_shift(L.prm.shifting.on());
+  L.ps.keep_pos0(levels_.size() > 1);
 }
 
 template <int D>

@@ -110,6 +110,9 @@ class Simulation {
   void set_stop_time(double t_stop) { stop_time_ = t_stop; }
   // Re-sorts after the particle arrays were replaced (resume).
   void resort();
+  // Keeps the optional arrays of level k that its models read and gives back the others: shift
+  // where the level shifts, pos0 where the level coupling reads it (several levels).
+  void keep_optional_arrays(std::size_t k);
   // Number of particles of all levels.
   std::size_t total_particles() const;
   std::size_t count(Kind k) const;
