@@ -101,6 +101,14 @@ std::map<FieldRole, int> expect_fields(const ParticleSet<D>& ps, Want want, cons
   return checked;
 }
 
+// The test grid: over [0, 1)^D, where the filled sets lie, with a margin; cells of 0.1.
+template <int D>
+CellGrid<D> cloud_grid() {
+  Vec<D> lo, hi;
+  for (int k = 0; k < D; ++k) lo[k] = -0.1, hi[k] = 1.1;
+  return CellGrid<D>(lo, hi, 0.1, 2);
+}
+
 bool all_roles(FieldRole) { return true; }
 bool persistent_only(FieldRole r) { return r == FieldRole::persistent; }
 
@@ -127,9 +135,7 @@ TYPED_TEST(FieldListTest, EveryCarriedFieldSurvivesTheSort) {
   constexpr int D = TypeParam::value;
   ParticleSet<D> ps = filled_set<D>(3000, 7);
   const auto ids_before = ps.id;
-  Vec<D> lo, hi;
-  for (int k = 0; k < D; ++k) lo[k] = -0.1, hi[k] = 1.1;
-  CellGrid<D> grid(lo, hi, 0.1, 2);
+  CellGrid<D> grid = cloud_grid<D>();
   ASSERT_TRUE(grid.sort(ps).empty());
   ASSERT_EQ(ps.size(), ids_before.size());
   ASSERT_NE(ps.id, ids_before) << "the sort should reorder this cloud";
@@ -214,9 +220,7 @@ namespace {
 TYPED_TEST(FieldListTest, WithoutShiftingTheShiftArrayStaysEmpty) {
   constexpr int D = TypeParam::value;
   ParticleSet<D> ps = filled_set<D>(800, 12, false);
-  Vec<D> lo, hi;
-  for (int k = 0; k < D; ++k) lo[k] = -0.1, hi[k] = 1.1;
-  CellGrid<D> grid(lo, hi, 0.1, 2);
+  CellGrid<D> grid = cloud_grid<D>();
   ASSERT_TRUE(grid.sort(ps).empty());
   EXPECT_TRUE(ps.shift.empty());
   EXPECT_EQ(expect_fields(ps, carried, "sort").at(FieldRole::persistent), kPersistentFields - 1);
@@ -251,9 +255,7 @@ TYPED_TEST(FieldListTest, WithoutShiftingTheShiftArrayStaysEmpty) {
 TYPED_TEST(FieldListTest, WithoutPos0TheStepCopiesAreTheRest) {
   constexpr int D = TypeParam::value;
   ParticleSet<D> ps = filled_set<D>(500, 14, true, false);
-  Vec<D> lo, hi;
-  for (int k = 0; k < D; ++k) lo[k] = -0.1, hi[k] = 1.1;
-  CellGrid<D> grid(lo, hi, 0.1, 2);
+  CellGrid<D> grid = cloud_grid<D>();
   ASSERT_TRUE(grid.sort(ps).empty());
   EXPECT_TRUE(ps.pos0.empty());
   EXPECT_EQ(expect_fields(ps, carried, "sort").at(FieldRole::step_copy), kStepCopyFields - 1);
@@ -269,9 +271,7 @@ TYPED_TEST(FieldListTest, WithoutPos0TheStepCopiesAreTheRest) {
 TYPED_TEST(FieldListTest, SortWithDeadStepCopiesCarriesTheState) {
   constexpr int D = TypeParam::value;
   ParticleSet<D> ps = filled_set<D>(900, 16);
-  Vec<D> lo, hi;
-  for (int k = 0; k < D; ++k) lo[k] = -0.1, hi[k] = 1.1;
-  CellGrid<D> grid(lo, hi, 0.1, 2);
+  CellGrid<D> grid = cloud_grid<D>();
   ASSERT_TRUE(grid.sort(ps, false).empty());
   EXPECT_EQ(expect_fields(ps, persistent_only, "sort").at(FieldRole::persistent),
             kPersistentFields);
