@@ -45,7 +45,8 @@ struct CandidateBlock {
   // Gathers the positions x and the columns src[k], k >= D (each of the grid's particle count;
   // src[k < D] is not read) of the particles in the stencil of cell c, unless the block already
   // holds that cell and groups. pad[k]: the value of column k on the dummies. With T = float the
-  // non-position columns come from the float sources rest[k] instead of src.
+  // non-position columns come from the float sources rest[k] instead of src. A null source
+  // leaves its column unset: the pass does not read it.
   template <int D>
   void gather(const Vec<D>* x, const std::array<const double*, K>& src,
               const std::array<double, K>& pad, const CellGrid<D>& grid, std::int64_t c, Groups g,
@@ -140,9 +141,11 @@ struct CandidateBlock {
       T* to = col[k].data() + at;
       const T* from = nullptr;
       if constexpr (kRelative)
-        from = (*rest)[k] + b;
+        from = (*rest)[k];
       else
-        from = src[k] + b;
+        from = src[k];
+      if (from == nullptr) continue;
+      from += b;
       if (whole) {
         for (std::size_t q = 0; q < chunks; ++q)
           std::memcpy(to + q * P, from + q * P, sizeof(T) * P);

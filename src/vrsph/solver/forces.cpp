@@ -46,7 +46,9 @@ StateView<T, D> state_view(const LevelColumns<D>& c) {
   StateView<T, D> w;
   for (int k = 0; k < D; ++k) w.v[k] = s.v[k].data();
   w.rho_dev = s.rho_dev.data(), w.p = s.p.data(), w.vol = s.vol.data(), w.mass = s.mass.data();
-  w.wall_vol = s.wall_vol.empty() ? w.vol : s.wall_vol.data();  // empty: no buffer particle
+  // Empty while the set holds no buffer particle: the walls' sum then reads vol, and the blocks
+  // copy no wall_vol column (a null source is skipped by CandidateBlock::gather).
+  w.wall_vol = s.wall_vol.empty() ? nullptr : s.wall_vol.data();
   return w;
 }
 
@@ -155,7 +157,9 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const For
 }
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
-template <int D, class T>
+// kVol: the block column of the neighbours' volume, ForceCol::wall_vol where buffer particles
+// are present (their volume is 0 there), else ForceCol::vol.
+template <int D, int kVol, class T>
 inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const ForceBlock<D, T>& blk,
                        ForceSums& out) {
   using C = ForceCol<D>;
@@ -167,7 +171,7 @@ inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const Forc
     const T vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
     const T inv_r2eta = T(1) / (g.r2 + eta2);
     PairSumsT<T> s;
-    s.s0 = continuity_pair(rho_i, nb[C::wall_vol], g.f, vij_dot_rij);
+    s.s0 = continuity_pair(rho_i, nb[kVol], g.f, vij_dot_rij);
     s.s1 = g.in;
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
@@ -214,6 +218,7 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     fill_sources<D, T>(cols, src);
   const auto pad = force_pad<D, T>();
   const auto* rest_ptr = std::is_same_v<T, float> ? &rest : nullptr;
+  const bool own_wall_vol = state_view<T>(cols).wall_vol != nullptr;
   auto body = [&](std::int64_t ii, ForceScratch<D, T>& scratch, ForceAcc& acc) {
     const auto i = static_cast<std::uint32_t>(ii);
     const Self<T> me(cols, i);
@@ -229,7 +234,10 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       return;
     }
     if (ps.kind[i] == Kind::wall) {
-      wall_sweep(prm, me, scratch.fluid, s);
+      if (own_wall_vol)
+        wall_sweep<D, ForceCol<D>::wall_vol>(prm, me, scratch.fluid, s);
+      else
+        wall_sweep<D, ForceCol<D>::vol>(prm, me, scratch.fluid, s);
     } else {
       fluid_sweep<D, VM, DM, false>(prm, me, scratch.fluid, s);
       scratch.wall.gather(cols.pos, src, pad, grid, cells[i], Groups::wall, rest_ptr);
