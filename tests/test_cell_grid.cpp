@@ -209,6 +209,46 @@ TYPED_TEST(CellGridTest, CarriedArrayFollowsItsParticles) {
   EXPECT_EQ(other, std::vector<double>(3, 7.0));
 }
 
+// for_each_run_within (the cross-level surface passes' search): for query points inside and
+// beyond the cloud and radii from half to three supports, the runs visit each particle at most
+// once and hold every particle within the radius.
+TYPED_TEST(CellGridTest, RunsWithinARadiusHoldEveryParticleInIt) {
+  constexpr int D = TypeParam::value / 10, cps = TypeParam::value % 10;
+  Cloud<D> cl = cloud_for_test<D>(6);
+  CellGrid<D> grid(cl.lo, cl.hi, cl.support, cps);
+  grid.sort(cl.ps);
+  const ParticleSet<D>& ps = cl.ps;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.6, 1.1);
+  std::vector<int> visits(ps.size());
+  std::size_t total = 0;
+  for (int q = 0; q < 60; ++q) {
+    Vec<D> x;
+    for (int k = 0; k < D; ++k) x[k] = u(rng);
+    const double radius = cl.support * (0.5 + 2.5 * (q % 6) / 5.0);
+    std::fill(visits.begin(), visits.end(), 0);
+    std::vector<std::uint64_t> found, brute;
+    for (Group g : {Group::fluid, Group::wall}) {
+      grid.for_each_run_within(x, radius, g, [&](std::uint32_t b, std::uint32_t e) {
+        ASSERT_LE(e, ps.size());
+        for (std::uint32_t j = b; j < e; ++j) {
+          ++visits[j];
+          if (norm2(ps.pos[j] - x) < radius * radius) found.push_back(ps.id[j]);
+        }
+      });
+    }
+    for (std::size_t j = 0; j < ps.size(); ++j) {
+      ASSERT_LE(visits[j], 1) << "visited twice";
+      if (norm2(ps.pos[j] - x) < radius * radius) brute.push_back(ps.id[j]);
+    }
+    std::sort(found.begin(), found.end());
+    std::sort(brute.begin(), brute.end());
+    ASSERT_EQ(found, brute) << "query " << q;
+    total += brute.size();
+  }
+  EXPECT_GT(total, 600u);  // the queries found particles
+}
+
 TYPED_TEST(CellGridTest, NeighbourRunsMatchBruteForce) {
   constexpr int D = TypeParam::value / 10, cps = TypeParam::value % 10;
   for (std::uint64_t seed : {4u, 5u}) {

@@ -66,6 +66,29 @@ class CellGrid {
     for_each_row(c, g, -reach_, reach_, fn);
   }
 
+  // Calls fn(begin, end) for runs of particles of group g that hold every particle within
+  // `radius` of x, for any radius (also beyond the stencil's reach) and any x: the rows of cells
+  // the box x +- radius overlaps, clipped to the table. Valid after a sort.
+  template <class Fn>
+  void for_each_run_within(const Vec<D>& x, double radius, Group g, Fn&& fn) const {
+    std::int64_t a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
+    for (int k = 0; k < D; ++k) {
+      const double lo = (x[k] - radius - origin_[k]) * inv_cell_;
+      const double hi = (x[k] + radius - origin_[k]) * inv_cell_;
+      if (!(lo < 1e15 && hi > -1e15)) return;  // NaN or absurdly far
+      a[k] = std::max<std::int64_t>(static_cast<std::int64_t>(std::floor(lo)) - lo_[k], 0);
+      b[k] = std::min<std::int64_t>(static_cast<std::int64_t>(std::floor(hi)) - lo_[k], n_[k] - 1);
+      if (a[k] > b[k]) return;
+    }
+    const std::int64_t base = static_cast<std::int64_t>(g) * ncell_total_;
+    for (std::int64_t z = a[2]; z <= b[2]; ++z) {
+      for (std::int64_t y = a[1]; y <= b[1]; ++y) {
+        const std::int64_t row = base + y * stride_[1] + z * stride_[2];
+        fn(starts_[row + a[0]], starts_[row + b[0] + 1]);
+      }
+    }
+  }
+
   // Candidate blocks (particles/candidate_block.hpp) serve `block_width` neighbouring cells of
   // one row: the block of cell c starts at block_first(c), and for_each_block_run visits the
   // runs of the union of the stencils of its cells, clipped to the row (the cells clipped off

@@ -30,7 +30,9 @@ inline constexpr std::string_view kNumericsKeys[] = {"cfl",
                                                      "hydrostatic_initial_density",
                                                      "local_time_stepping",
                                                      "vres_conserve_momentum",
-                                                     "vres_buffer_fill_min"};
+                                                     "vres_buffer_fill_min",
+                                                     "vres_buffer_ramp",
+                                                     "vres_surface_across_levels"};
 // The model tables of [numerics] (usually written as inline tables).
 inline constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 inline constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};

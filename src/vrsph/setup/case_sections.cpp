@@ -166,6 +166,10 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
       r.opt_bool("vres_conserve_momentum").value_or(spec.vres_conserve_momentum);
   spec.vres_buffer_fill_min =
       r.opt_number("vres_buffer_fill_min", kBelowHalf).value_or(spec.vres_buffer_fill_min);
+  spec.vres_buffer_ramp =
+      r.opt_number("vres_buffer_ramp", kBufferRamp).value_or(spec.vres_buffer_ramp);
+  spec.vres_surface_across_levels =
+      r.opt_bool("vres_surface_across_levels").value_or(spec.vres_surface_across_levels);
   n.hydrostatic_initial_density =
       r.opt_bool("hydrostatic_initial_density").value_or(n.hydrostatic_initial_density);
   n.local_time_stepping = r.opt_bool("local_time_stepping").value_or(n.local_time_stepping);

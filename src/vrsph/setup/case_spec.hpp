@@ -123,6 +123,8 @@ struct CaseSpec {
   // numerics.vres_*: read by the multi-level coupling (solver/simulation.cpp, vres/)
   bool vres_conserve_momentum = false;  // remove the coupling's net force and momentum jumps
   double vres_buffer_fill_min = 0.0;    // buffer particles below this donor fill are deleted
+  double vres_buffer_ramp = 0.0;        // dp: buffer volumes ramp to 0 over this at the outer edge
+  bool vres_surface_across_levels = false;  // surface passes over the fluid of both levels
 
   // geometry
   std::vector<FluidBlock> fluid_blocks;

@@ -131,6 +131,11 @@ void write_numerics(Writer& w, const CaseSpec& s) {
   w.kv("vres_conserve_momentum", toml_bool(s.vres_conserve_momentum));
   w.kv("vres_buffer_fill_min", num(s.vres_buffer_fill_min),
        "donor fill below which a buffer particle is deleted (0.5 on a free surface)");
+  if (s.vres_buffer_ramp > 0.0)  // written only when on: older run folders resume without it
+    w.kv("vres_buffer_ramp", num(s.vres_buffer_ramp),
+         "dp over which buffer volumes ramp to 0 at the shell's outer edge");
+  if (s.vres_surface_across_levels)  // written only when on, as the ramp
+    w.kv("vres_surface_across_levels", "true", "surface fields over the fluid of both levels");
 }
 
 // [[fluid_block]] and [[wall_block]].

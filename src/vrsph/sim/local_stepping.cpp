@@ -183,7 +183,7 @@ template <int D>
 ForceStats Simulation<D>::evaluate_level(std::size_t k, double t_eval, bool corrector_stage,
                                          double dt) {
   Level<D>& L = levels_[k];
-  pack_level(L);
+  pack(k);
   surface_fields_level(k, t_eval, corrector_stage);
   const double t0 = now_seconds();
   const bool st = L.prm.sigma > 0.0;

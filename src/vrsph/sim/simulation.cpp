@@ -73,8 +73,8 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
   }
   counters_.next_id = next_id;
   const CouplingOptions opt{spec.vres_conserve_momentum,
-                            spec.numerics.surface_tension.zero_net_force,
-                            spec.vres_buffer_fill_min};
+                            spec.numerics.surface_tension.zero_net_force, spec.vres_buffer_fill_min,
+                            spec.vres_buffer_ramp, spec.vres_surface_across_levels};
   coupling_ = LevelCoupling<D>(std::move(links), opt);
 
   // One domain for all levels, from the level-0 particles.
@@ -153,6 +153,12 @@ void Simulation<D>::sort_particles(Level<D>& L, bool step_copies) {
 }
 
 template <int D>
+void Simulation<D>::pack(std::size_t k) {
+  coupling_.before_pack(levels_, k);
+  pack_level(levels_[k]);
+}
+
+template <int D>
 void Simulation<D>::sort_all(bool step_copies) {
   for (Level<D>& L : levels_) sort_particles(L, step_copies);
 }
@@ -191,7 +197,7 @@ DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
 // level with the surface-tension acceleration added, then the coupling's net-force corrections.
 template <int D>
 ForceStats Simulation<D>::evaluate_forces(double t_eval, bool corrector_stage) {
-  for (Level<D>& L : levels_) pack_level(L);  // once, for every pass below
+  for (std::size_t k = 0; k < levels_.size(); ++k) pack(k);  // once, for every pass below
   surface_fields_all(t_eval, corrector_stage);
   const double t0 = now_seconds();
   const bool st = levels_[0].prm.sigma > 0.0;

@@ -157,6 +157,8 @@ class Simulation {
 
  private:
   void sort_particles(Level<D>& L, bool step_copies = true);
+  // Packs level k's columns for the passes of one evaluation, with the coupling's volume weights.
+  void pack(std::size_t k);
   void sort_all(bool step_copies = true);
   void check_state(const Level<D>& L) const;
   void check_dt() const;

@@ -108,7 +108,7 @@ void Simulation<D>::update_surface_fields() {
     output_sf_.resize(levels_.size());
     for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
   }
-  for (Level<D>& L : levels_) pack_level(L);
+  for (std::size_t k = 0; k < levels_.size(); ++k) pack(k);
   surface_passes(has_surface_fields() && levels_[0].prm.sigma > 0.0);
   if (hold) {
     for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);

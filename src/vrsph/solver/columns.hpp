@@ -22,6 +22,14 @@ struct LevelColumns {
   const Vec<D>* pos = nullptr;
   std::array<std::vector<double>, D> v;       // velocity
   std::vector<double> rho_dev, p, vol, mass;  // rho - rho0, p from the EOS, vol = m / rho
+  // Weight omega_i in [0, 1] of each particle's volume and mass in every sum over neighbours
+  // (vres/region.hpp, buffer_volume_weight), set by the coupling before each pack; empty: 1 for
+  // all. vol and mass below already carry it.
+  std::vector<double> weight;
+  // Surface fields across levels (solver/cross_level.hpp): the surface passes then read svol,
+  // vol with 0 for buffer particles, which the other level's fluid replaces in their sums.
+  bool surface_without_buffers = false;
+  std::vector<double> svol;
   // The volume seen by a wall's continuity sum (solver/forces.cpp): vol but 0 for buffer
   // particles, so empty (the passes read vol) while the set holds no buffer particle.
   std::vector<double> wall_vol;
@@ -30,7 +38,7 @@ struct LevelColumns {
   // columns stay empty.
   struct Floats {
     std::array<std::vector<float>, D> v;
-    std::vector<float> rho_dev, p, vol, mass, wall_vol;
+    std::vector<float> rho_dev, p, vol, mass, wall_vol, svol;
   } f;
 
   // Volumes only besides the positions (the surface passes' needs), from a read-only particle
@@ -44,7 +52,7 @@ struct LevelColumns {
     else
       vol.resize(n);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-      const double vol_i = ps.mass[i] / ps.rho[i];
+      const double vol_i = weighted(i, ps.mass[i] / ps.rho[i]);
       if (floats)
         f.vol[i] = static_cast<float>(vol_i);
       else
@@ -72,13 +80,21 @@ struct LevelColumns {
       for (int k = 0; k < D; ++k) v[k][i] = ps.vel[i][k];
       rho_dev[i] = ps.rho[i] - eos.rho0;  // exact (Sterbenz) while rho0 / 2 <= rho <= 2 rho0
       p[i] = eos.pressure(ps.rho[i]);
-      vol[i] = ps.mass[i] / ps.rho[i];
-      mass[i] = ps.mass[i];
+      vol[i] = weighted(i, ps.mass[i] / ps.rho[i]);
+      mass[i] = weighted(i, ps.mass[i]);
       if (buffers) wall_vol[i] = wall_continuity_volume(vol[i], ps.kind[i] == Kind::buffer);
     });
+    svol.resize(surface_without_buffers ? n : 0);
+    if (surface_without_buffers) {
+      exec::for_each(static_cast<std::int64_t>(n),
+                     [&](std::int64_t i) { svol[i] = ps.kind[i] == Kind::buffer ? 0.0 : vol[i]; });
+    }
   }
 
  private:
+  double weighted(std::int64_t i, double x) const {
+    return weight.empty() ? x : weight[static_cast<std::size_t>(i)] * x;
+  }
   void pack_floats(const ParticleSet<D>& ps, const TaitEos& eos) {
     const std::size_t n = ps.size();
     for (int k = 0; k < D; ++k) f.v[k].resize(n);
@@ -87,15 +103,21 @@ struct LevelColumns {
     f.wall_vol.resize(buffers ? n : 0);
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       for (int k = 0; k < D; ++k) f.v[k][i] = static_cast<float>(ps.vel[i][k]);
-      const double vol_i = ps.mass[i] / ps.rho[i];
+      const double vol_i = weighted(i, ps.mass[i] / ps.rho[i]);
       f.rho_dev[i] = static_cast<float>(ps.rho[i] - eos.rho0);
       f.p[i] = static_cast<float>(eos.pressure(ps.rho[i]));
       f.vol[i] = static_cast<float>(vol_i);
-      f.mass[i] = static_cast<float>(ps.mass[i]);
+      f.mass[i] = static_cast<float>(weighted(i, ps.mass[i]));
       if (buffers)
         f.wall_vol[i] =
             static_cast<float>(wall_continuity_volume(vol_i, ps.kind[i] == Kind::buffer));
     });
+    f.svol.resize(surface_without_buffers ? n : 0);
+    if (surface_without_buffers) {
+      exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+        f.svol[i] = ps.kind[i] == Kind::buffer ? 0.0f : f.vol[i];
+      });
+    }
   }
 
   static bool has_buffer(const ParticleSet<D>& ps) {

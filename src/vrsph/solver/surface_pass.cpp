@@ -12,47 +12,6 @@
 
 namespace vrsph {
 
-template <int D>
-void SurfaceFields<D>::resize(std::size_t n) {
-  lambda.assign(n, 0.0);
-  l_corr.assign(n, Mat<D>::identity());
-  grad_c.assign(n, Vec<D>{});
-  div_r.assign(n, 0.0);
-  shepard.assign(n, 0.0);
-  normal.resize(n);  // sized only: held values stay, and passes 2 and 3 write every entry
-  curvature.resize(n);
-  acc_st.resize(n);
-}
-
-namespace {
-template <class T>
-void keep_entries(std::vector<T>& a, const std::vector<std::uint8_t>& keep) {
-  if (a.size() != keep.size()) return;  // not sized to this level's particles: nothing held
-  std::size_t w = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (keep[i]) a[w++] = a[i];
-  a.resize(w);
-}
-}  // namespace
-
-template <int D>
-void SurfaceFields<D>::compact_held(const std::vector<std::uint8_t>& keep) {
-  if (!held) return;
-  keep_entries(lambda, keep);
-  keep_entries(normal, keep);
-  keep_entries(curvature, keep);
-  keep_entries(acc_st, keep);
-}
-
-template <int D>
-void SurfaceFields<D>::fit_held(std::size_t n) {
-  if (!held) return;
-  lambda.resize(n, 0.0);
-  normal.resize(n, Vec<D>{});
-  curvature.resize(n, 0.0);
-  acc_st.resize(n, Vec<D>{});
-}
-
 namespace {
 
 constexpr int kChunk = 256;  // particles handed to a thread at a time
@@ -93,13 +52,14 @@ void frame_of(const LevelColumns<D>& c, std::size_t i, const Block& blk, T (&hi)
   blk.frame(x, hi, lo);
 }
 
-// The volume column of the blocks: the level's float copy in mixed precision.
+// The volume column of the blocks: the level's float copy in mixed precision; the one without
+// buffer particles when the fields are summed across levels.
 template <class T, int D>
 const T* volume_column(const LevelColumns<D>& c) {
   if constexpr (std::is_same_v<T, float>)
-    return c.f.vol.data();
+    return c.f.svol.empty() ? c.f.vol.data() : c.f.svol.data();
   else
-    return c.vol.data();
+    return c.svol.empty() ? c.vol.data() : c.svol.data();
 }
 
 // Pass 1 of particle i over its block (columns x, V): M in s0..s2 (xx, xy, yy), grad C in s3, s4,
@@ -107,10 +67,10 @@ const T* volume_column(const LevelColumns<D>& c) {
 // 3D only, M in s7..s9 (xz, yz, zz) and grad C in s10 (2D sums no zeros). G only with kGradW
 // (surface tension on: pass 2 reads it; shifting alone does not).
 template <int D, class T, bool kGradW>
-void pass1_particle(const SolverParams<D>& prm, const typename SurfaceBlock<D, 1, T>::Block& blk,
-                    const T (&xi)[3], const T (&xi_lo)[3], double (&sum)[12]) {
+struct Pass1Pair {
   using S = SurfaceBlock<D, 1, T>;
-  auto pair = [](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
+  static constexpr int kSums = (D == 3 ? 11 : 7) + (kGradW ? 1 : 0);
+  PairSumsT<T> operator()(const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) const {
     PairSumsT<T> s;
     const T vol_j = nb[D];
     const T vf = vol_j * g.f;
@@ -131,11 +91,26 @@ void pass1_particle(const SolverParams<D>& prm, const typename SurfaceBlock<D, 1
       s.s7 = -vf * g.r;
     }
     return s;
-  };
+  }
+};
+
+template <int D, class T, bool kGradW>
+void pass1_particle(const SolverParams<D>& prm, const typename SurfaceBlock<D, 1, T>::Block& blk,
+                    const T (&xi)[3], const T (&xi_lo)[3], double (&sum)[12]) {
+  using P = Pass1Pair<D, T, kGradW>;
   double unused = -1e300;
-  constexpr int kSums = (D == 3 ? 11 : 7) + (kGradW ? 1 : 0);
-  sweep_pairs<D, S::K, kSums, false, S::KL>(
-      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, sum, unused, xi_lo);
+  sweep_pairs<D, P::S::K, P::kSums, false, P::S::KL>(
+      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), P{}, sum, unused, xi_lo);
+}
+
+// Pass 1's sums of particle x over the other levels' fluid (solver/cross_level.hpp); returns
+// the number of such neighbours.
+template <int D, class T, bool kGradW>
+std::size_t pass1_across(const std::vector<CrossSource<D>>& cross, const Vec<D>& x,
+                         double (&sum)[12]) {
+  using P = Pass1Pair<D, T, kGradW>;
+  auto no_more = [](const CrossSource<D>&, std::uint32_t, Neighbour<P::S::K, T>&) {};
+  return cross_sums<D, P::S::K, P::kSums, T>(cross, x, no_more, P{}, sum);
 }
 
 // M_i and grad C_i from the pass-1 slots.
@@ -158,6 +133,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   const double w0 = prm.kernel.w(0.0);
   const bool grad_w = prm.sigma > 0.0;  // read by pass 2 only
   sf.grad_w.assign(grad_w ? ps.size() : 0, 0.0);
+  sf.cross_hit.assign(sf.cross.empty() ? 0 : ps.size(), 0);
   auto body = [&](std::int64_t ii, typename S::Block& blk) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
@@ -169,6 +145,11 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
       pass1_particle<D, T, true>(prm, blk, xi, xi_lo, s);
     else
       pass1_particle<D, T, false>(prm, blk, xi, xi_lo, s);
+    if (!sf.cross.empty()) {
+      const std::size_t hits = grad_w ? pass1_across<D, T, true>(sf.cross, ps.pos[i], s)
+                                      : pass1_across<D, T, false>(sf.cross, ps.pos[i], s);
+      sf.cross_hit[i] = hits > 0 ? 1 : 0;
+    }
     Mat<D> m;
     Vec<D> grad_c;
     assemble_pass1<D>(s, m, grad_c);
@@ -177,7 +158,8 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
     sf.l_corr[i] = correction_from_m(m, lambda);
     sf.grad_c[i] = grad_c;
     sf.div_r[i] = s[5];
-    sf.shepard[i] = shepard_pair(ps.mass[i] / ps.rho[i], w0) + s[6];  // self + neighbours
+    const double vol_i = ps.mass[i] / ps.rho[i] * (cols.weight.empty() ? 1.0 : cols.weight[i]);
+    sf.shepard[i] = shepard_pair(vol_i, w0) + s[6];  // self + neighbours
     if (grad_w) sf.grad_w[i] = s[D == 3 ? 11 : 7];
   };
   exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
@@ -206,7 +188,8 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     const bool difference = lambda_i >= prm.surface_tension.lambda_threshold;
     const T lambda_ref = static_cast<T>(difference ? lambda_i : 0.0);  // difference form
     const std::int64_t cell = grid.particle_cells()[i];
-    if (difference && !sf.grad_w.empty()) {
+    const bool across = !sf.cross_hit.empty() && sf.cross_hit[i] != 0;
+    if (difference && !sf.grad_w.empty() && !across) {  // the bound knows this level only
       lambda_range<D>(grid, cell, lambda_col, sc);
       const double limit = prm.surface_tension.normal_epsilon * lambda_i / prm.h;
       if (normal_surely_zero<D, T>(sc.lo, sc.hi, lambda_ref, sf.l_corr[i], sf.grad_w[i], limit))
@@ -226,6 +209,15 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     };
     sweep_pairs<D, S::K, D, false, S::KL>(
         prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused, xi_lo);
+    if (across) {
+      // A source whose lambda is not sized to its particles (its pass 1 has not run yet: the
+      // first evaluation with local time stepping) counts as interior, lambda 1.
+      auto lambda_j = [](const CrossSource<D>& c, std::uint32_t j, Neighbour<S::K, T>& nb) {
+        const std::vector<double>& l = *c.lambda;
+        nb.c[D + 1] = static_cast<T>(l.size() == c.ps->size() ? l[j] : 1.0);
+      };
+      cross_sums<D, S::K, D, T>(sf.cross, ps.pos[i], lambda_j, pair, s);
+    }
     Vec<D> sum;
     for (int d = 0; d < D; ++d) sum[d] = s[d];
     sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i,
@@ -240,7 +232,8 @@ template <int D, class T>
 CurvatureSums curvature_particle(const SolverParams<D>& prm,
                                  const typename SurfaceBlock<D, D + 1, T>::Block& blk,
                                  const T (&xi)[3], const T (&xi_lo)[3], const Vec<D, T>& n_i,
-                                 const Mat<D, T>& l_i) {
+                                 const Mat<D, T>& l_i, const std::vector<CrossSource<D>>* cross,
+                                 const Vec<D>& x_i) {
   using S = SurfaceBlock<D, D + 1, T>;
   auto pair = [=](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
     PairSumsT<T> s;
@@ -257,6 +250,14 @@ CurvatureSums curvature_particle(const SolverParams<D>& prm,
   double s[12] = {}, unused = -1e300;
   sweep_pairs<D, S::K, 3, false, S::KL>(
       prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused, xi_lo);
+  if (cross != nullptr) {  // a source without normals yet (see pass 2) counts none
+    auto normal_j = [](const CrossSource<D>& c, std::uint32_t j, Neighbour<S::K, T>& nb) {
+      const std::vector<Vec<D>>& n = *c.normal;
+      for (int k = 0; k < D; ++k)
+        nb.c[D + 1 + k] = static_cast<T>(n.size() == c.ps->size() ? n[j][k] : 0.0);
+    };
+    cross_sums<D, S::K, 3, T>(*cross, x_i, normal_j, pair, s);
+  }
   return CurvatureSums{s[0], s[1], s[2]};
 }
 
@@ -291,8 +292,10 @@ void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const 
     src.gather(blk, grid, grid.particle_cells()[i], Groups::fluid);
     T xi[3], xi_lo[3];
     frame_of(cols, i, blk, xi, xi_lo);
+    const bool across = !sf.cross_hit.empty() && sf.cross_hit[i] != 0;
     const CurvatureSums sums =
-        curvature_particle<D, T>(prm, blk, xi, xi_lo, vec_cast<T>(n_i), mat_cast<T>(sf.l_corr[i]));
+        curvature_particle<D, T>(prm, blk, xi, xi_lo, vec_cast<T>(n_i), mat_cast<T>(sf.l_corr[i]),
+                                 across ? &sf.cross : nullptr, ps.pos[i]);
     const SurfaceTensionParams& st = prm.surface_tension;
     const double kappa = st.curvature_correction ? corrected_curvature<D>(sums) : sums.kappa;
     sf.curvature[i] = kappa;
@@ -342,7 +345,6 @@ void surface_tension_force(const SolverParams<D>& prm, const ParticleSet<D>& ps,
   surface_curvature_force(prm, ps, grid, cols, sf);
 }
 
-template struct SurfaceFields<2>;
 template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&,
                               SurfaceFields<2>&);
 template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&,
@@ -355,7 +357,6 @@ template void surface_curvature_force<2>(const SolverParams<2>&, const ParticleS
 template void surface_tension_force<2>(const SolverParams<2>&, const ParticleSet<2>&,
                                        const CellGrid<2>&, const LevelColumns<2>&,
                                        SurfaceFields<2>&);
-template struct SurfaceFields<3>;
 template void surface_sums<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&,
                               SurfaceFields<3>&);
 template void surface_sums<3>(const SolverParams<3>&, const ParticleSet<3>&, const CellGrid<3>&,

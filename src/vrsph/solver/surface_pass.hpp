@@ -12,6 +12,7 @@
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/solver/columns.hpp"
+#include "vrsph/solver/cross_level.hpp"
 #include "vrsph/solver/params.hpp"
 
 namespace vrsph {
@@ -38,6 +39,12 @@ struct SurfaceFields {
   // pass 2 and the normal for pass 3 (pass 1 reads the level's float volumes).
   std::vector<float> lambda_f;
   std::array<std::vector<float>, D> normal_f;
+
+  // Surface fields across levels (solver/cross_level.hpp): the other levels' fluid as further
+  // neighbours (empty: none), and which particles found any in pass 1 (passes 2 and 3 look for
+  // them only there).
+  std::vector<CrossSource<D>> cross;
+  std::vector<std::uint8_t> cross_hit;
 
   // Sizes the arrays pass 1 writes, and sizes the others without touching their values (a pass 1
   // alone leaves what passes 2 and 3 wrote).

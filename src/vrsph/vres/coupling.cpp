@@ -40,7 +40,7 @@ bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t fi
 
 template <int D>
 void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
-                                 double dt, const std::vector<double>& donor_a,
+                                 double dt, const std::vector<double>& donor_a, double entry,
                                  std::uint64_t& next_id, CouplingTally& tally) {
   if (dt <= 0.0) return;
   Level<D>& L = levels[l];
@@ -69,7 +69,7 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
     const double fill = s.shepard + s.shepard_walls;
     P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), fill * P.area, dt);
     if (P.mass < m) continue;
-    const Vec<D> x_new = P.x - (0.5 * L.prm.dp) * P.n;
+    const Vec<D> x_new = P.x - (entry * L.prm.dp) * P.n;
     if (crowded(L, x_new, kMinSpacing * L.prm.dp, first_new)) continue;  // mass stays stored
     P.mass -= m;
     L.ps.push_back(next_id++, Kind::buffer, x_new, s.vel, s.rho, m);
@@ -81,10 +81,10 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
 
 template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
-                           double dt, std::uint64_t& next_id, CouplingTally& tally) {
+                           double dt, double entry, std::uint64_t& next_id, CouplingTally& tally) {
   const std::vector<double> now(levels.size(), 1.0);
   for (std::size_t l = 0; l < levels.size(); ++l)
-    accumulate_and_create_level(levels, links[l], l, dt, now, next_id, tally);
+    accumulate_and_create_level(levels, links[l], l, dt, now, entry, next_id, tally);
 }
 
 template <int D>
@@ -192,15 +192,15 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
 }
 
 template void accumulate_and_create<2>(std::vector<Level<2>>&, std::vector<LevelLink<2>>&, double,
-                                       std::uint64_t&, CouplingTally&);
+                                       double, std::uint64_t&, CouplingTally&);
 template void accumulate_and_create<3>(std::vector<Level<3>>&, std::vector<LevelLink<3>>&, double,
-                                       std::uint64_t&, CouplingTally&);
+                                       double, std::uint64_t&, CouplingTally&);
 template void accumulate_and_create_level<2>(std::vector<Level<2>>&, LevelLink<2>&, std::size_t,
-                                             double, const std::vector<double>&, std::uint64_t&,
-                                             CouplingTally&);
+                                             double, const std::vector<double>&, double,
+                                             std::uint64_t&, CouplingTally&);
 template void accumulate_and_create_level<3>(std::vector<Level<3>>&, LevelLink<3>&, std::size_t,
-                                             double, const std::vector<double>&, std::uint64_t&,
-                                             CouplingTally&);
+                                             double, const std::vector<double>&, double,
+                                             std::uint64_t&, CouplingTally&);
 template std::size_t interpolate_buffers_level<2>(std::vector<Level<2>>&, const LevelLink<2>&,
                                                   std::size_t, CouplingTally&, double,
                                                   const std::vector<double>&);

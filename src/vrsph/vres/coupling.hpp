@@ -3,7 +3,8 @@
 //  1. mass points on the outer face of each buffer accumulate the mass the other level's flow
 //     carries into the buffer, dm = -rho (u . n) dA dt times the donor's smoothed fill (about 1
 //     inside the fluid, 1/2 on its free surface, 0 outside); a stored mass above one particle
-//     mass creates a buffer particle 0.5 dp inside the face;
+//     mass creates a buffer particle `entry` dp inside the face (0.5; just inside it with the
+//     volume ramp, numerics.vres_buffer_ramp);
 //  2. kinds follow positions: fluid entering its level's buffer becomes buffer, buffer entering
 //     the fluid region becomes fluid, anything leaving the level's region is deleted;
 //  3. every buffer particle takes rho and v from the other level's fluid by first-order
@@ -39,14 +40,14 @@ struct CouplingTally {
 // ids from next_id.
 template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
-                           double dt, std::uint64_t& next_id, CouplingTally& tally);
+                           double dt, double entry, std::uint64_t& next_id, CouplingTally& tally);
 
 // Step 1 for level l alone, each donor level d read at the fraction donor_a[d] of its last step
 // (interpolate_from_level; 1: its current state). Local time stepping calls it at the end of
 // each of level l's own steps, with dt that step.
 template <int D>
 void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
-                                 double dt, const std::vector<double>& donor_a,
+                                 double dt, const std::vector<double>& donor_a, double entry,
                                  std::uint64_t& next_id, CouplingTally& tally);
 
 // Step 2 for one level (particles are compacted; the level must be re-sorted afterwards).

@@ -56,15 +56,60 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
   });
 }
 
+// omega of every particle of level l for its next pack (numerics.vres_buffer_ramp): buffer
+// particles by their distance inside the shell's outer edge (region.hpp), everything else 1.
+// Off (or a single level): no weights.
+template <int D>
+void LevelCoupling<D>::volume_weights(std::vector<Level<D>>& levels, std::size_t l) const {
+  Level<D>& L = levels[l];
+  if (!multi_level() || opt_.buffer_ramp <= 0.0) {
+    L.cols.weight.clear();
+    return;
+  }
+  const LevelRegion<D>& region = links_[l].region;
+  const double ramp = opt_.buffer_ramp * L.prm.dp;
+  L.cols.weight.resize(L.ps.size());
+  exec::for_each(static_cast<std::int64_t>(L.ps.size()), [&](std::int64_t i) {
+    const bool buffer = L.ps.kind[i] == Kind::buffer;
+    L.cols.weight[i] = buffer ? buffer_volume_weight(region.classify(L.ps.pos[i]), ramp) : 1.0;
+  });
+}
+
+// The levels next to l (its parent and its children) as sources of l's surface passes, each
+// with the pair kernel of h_ij = (h_l + h_o) / 2; none when off or with a single level.
+template <int D>
+void LevelCoupling<D>::cross_sources(std::vector<Level<D>>& levels, std::size_t l) const {
+  Level<D>& L = levels[l];
+  L.sf.cross.clear();
+  const bool on = multi_level() && opt_.surface_across_levels;
+  L.cols.surface_without_buffers = on;
+  if (!on) return;
+  const LevelRegion<D>& region = links_[l].region;
+  std::vector<int> others;
+  if (region.parent >= 0) others.push_back(region.parent);
+  for (const auto& c : region.children) others.push_back(c.level);
+  for (const int o : others) {
+    const Level<D>& O = levels[static_cast<std::size_t>(o)];
+    L.sf.cross.push_back(
+        {&O.ps, &O.grid, &O.sf.lambda, &O.sf.normal, WendlandC2<D>(0.5 * (L.prm.h + O.prm.h))});
+  }
+}
+
+template <int D>
+void LevelCoupling<D>::before_pack(std::vector<Level<D>>& levels, std::size_t l) const {
+  volume_weights(levels, l);
+  cross_sources(levels, l);
+}
+
 template <int D>
 void LevelCoupling<D>::after_surface_sums(std::vector<Level<D>>& levels, std::size_t l) const {
-  if (multi_level())
+  if (multi_level() && !opt_.surface_across_levels)
     exchange_buffer_field(levels, l, &SurfaceFields<D>::lambda, kBufferLambdaReach);
 }
 
 template <int D>
 void LevelCoupling<D>::after_normals(std::vector<Level<D>>& levels, std::size_t l) const {
-  if (multi_level())
+  if (multi_level() && !opt_.surface_across_levels)
     exchange_buffer_field(levels, l, &SurfaceFields<D>::normal, kBufferNormalReach);
 }
 
@@ -125,7 +170,7 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  accumulate_and_create(levels, links_, dt, next_id, tally);
+  accumulate_and_create(levels, links_, dt, entry_depth(), next_id, tally);
   for (std::size_t l = 0; l < levels.size(); ++l) update_kinds(levels[l], links_[l], tally);
   sort();
   if (interpolate_buffers(levels, links_, tally, opt_.buffer_fill_min) > 0) sort();
@@ -144,7 +189,7 @@ Vec<D> LevelCoupling<D>::net_force(const std::vector<Level<D>>& levels, std::siz
   const bool st = opt_.zero_net_surface_force && capillary && L.sf.acc_st.size() == L.ps.size();
   const bool coupling = wants_buffer_reaction();
   for (std::size_t i = 0; i < L.ps.size(); ++i) {
-    if (coupling && L.ps.kind[i] == Kind::buffer) f -= L.ps.mass[i] * L.ps.acc[i];
+    if (coupling && L.ps.kind[i] == Kind::buffer) f -= buffer_mass(L, i) * L.ps.acc[i];
     if (st && L.ps.kind[i] == Kind::fluid) f += L.ps.mass[i] * L.sf.acc_st[i];
   }
   return f;
@@ -166,7 +211,7 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  accumulate_and_create_level(levels, links_[l], l, dt, donor_a, next_id, tally);
+  accumulate_and_create_level(levels, links_[l], l, dt, donor_a, entry_depth(), next_id, tally);
   update_kinds(levels[l], links_[l], tally);
   sort();
   if (interpolate_buffers_level(levels, links_[l], l, tally, opt_.buffer_fill_min, donor_a) > 0)

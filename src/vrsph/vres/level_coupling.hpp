@@ -21,6 +21,8 @@ struct CouplingOptions {
   bool conserve_momentum = false;       // numerics.vres_conserve_momentum
   bool zero_net_surface_force = false;  // numerics.surface_tension.zero_net_force
   double buffer_fill_min = 0.0;         // numerics.vres_buffer_fill_min
+  double buffer_ramp = 0.0;             // numerics.vres_buffer_ramp, in dp of each level
+  bool surface_across_levels = false;   // numerics.vres_surface_across_levels
 };
 
 template <int D>
@@ -44,6 +46,10 @@ class LevelCoupling {
   // the donors' fields are those of their last passes, held with their particles).
   void after_surface_sums(std::vector<Level<D>>& levels, std::size_t l) const;
   void after_normals(std::vector<Level<D>>& levels, std::size_t l) const;
+  // Before each pack of level l: the weights of its particles' volumes (LevelColumns::weight;
+  // numerics.vres_buffer_ramp, none when off) and, with surface_across_levels, the neighbouring
+  // levels' fluid as sources of its surface passes (solver/cross_level.hpp).
+  void before_pack(std::vector<Level<D>>& levels, std::size_t l) const;
   // After the pair forces: removes the net coupling force and/or net capillary force (capillary:
   // surface tension is on) as a uniform acceleration of the fluid.
   void after_forces(std::vector<Level<D>>& levels, bool capillary) const;
@@ -75,6 +81,12 @@ class LevelCoupling {
   }
 
  private:
+  void volume_weights(std::vector<Level<D>>& levels, std::size_t l) const;
+  void cross_sources(std::vector<Level<D>>& levels, std::size_t l) const;
+  // Where a created particle is placed, in dp inside the buffer's outer face: 0.5 (Ricci et al.),
+  // or, with the volume ramp, just inside the face, where its weight starts from about 0.
+  double entry_depth() const { return opt_.buffer_ramp > 0.0 ? kRampEntryDepth : 0.5; }
+  static constexpr double kRampEntryDepth = 0.01;
   template <class T>
   void exchange_buffer_field(std::vector<Level<D>>& levels, std::size_t l,
                              std::vector<T> SurfaceFields<D>::*field, double reach_h) const;

@@ -51,13 +51,20 @@ Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
   return p;
 }
 
-// F_c: the net force of all buffers on the fluid of their level, -sum_buffer m_j a_j.
+// The mass of buffer particle i as its level's sums see it: m_i omega_i (LevelColumns::weight,
+// numerics.vres_buffer_ramp), so that its reaction balances the weighted force it exerts.
+template <int D>
+double buffer_mass(const Level<D>& L, std::size_t i) {
+  return L.cols.weight.empty() ? L.ps.mass[i] : L.cols.weight[i] * L.ps.mass[i];
+}
+
+// F_c: the net force of all buffers on the fluid of their level, -sum_buffer m_j omega_j a_j.
 template <int D>
 Vec<D> coupling_net_force(const std::vector<Level<D>>& levels) {
   Vec<D> f{};
   for (const Level<D>& L : levels) {
     for (std::size_t i = 0; i < L.ps.size(); ++i) {
-      if (L.ps.kind[i] == Kind::buffer) f -= L.ps.mass[i] * L.ps.acc[i];
+      if (L.ps.kind[i] == Kind::buffer) f -= buffer_mass(L, i) * L.ps.acc[i];
     }
   }
   return f;

@@ -101,6 +101,21 @@ struct ZoneInfo {
   double width = 0.0;  // buffer: the shell's thickness
 };
 
+// Weight of a buffer particle's volume in every sum of its level (numerics.vres_buffer_ramp, not
+// part of Ricci et al. 2024): with s = (width - depth) / ramp, its distance inside the shell's
+// outer edge in units of the ramp width,
+//   omega = 3 s^2 - 2 s^3 for 0 <= s <= 1, and 1 deeper in,
+// so that a particle deleted on crossing the outer edge has already faded out (omega = 0 there)
+// and one created just inside it fades in as it is carried inward, with no step in any sum.
+// omega and d omega / ds are continuous (C1); beyond the edge (zone outside, before the step's
+// deletions) it is 0. ramp <= 0: 1 everywhere.
+template <int D>
+double buffer_volume_weight(const ZoneInfo<D>& z, double ramp) {
+  if (ramp <= 0.0 || z.zone == Zone::fluid) return 1.0;
+  const double s = std::clamp((z.width - z.depth) / ramp, 0.0, 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+
 // One point on the outer face of a buffer (the face away from its level's fluid) where the mass
 // carried across by the other level's flow accumulates until a particle can be created.
 template <int D>
