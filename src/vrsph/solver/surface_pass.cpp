@@ -9,58 +9,13 @@
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/physics/surface_tension.hpp"
 #include "vrsph/solver/normal_bound.hpp"
+#include "vrsph/solver/surface_block.hpp"
 
 namespace vrsph {
 
 namespace {
 
 constexpr int kChunk = 256;  // particles handed to a thread at a time
-
-// The blocks of a surface pass in arithmetic type T (core/precision.hpp): the positions (D
-// columns), the pass's N other columns (volume, lambda, normal components), and in float the
-// positions' low parts (D columns, particles/candidate_block.hpp).
-template <int D, int N, class T>
-struct SurfaceBlock {
-  static constexpr bool kFloat = std::is_same_v<T, float>;
-  static constexpr int K = D + N + (kFloat ? D : 0);
-  static constexpr int KL = kFloat ? D + N : -1;  // first low-part column, or none
-  using Block = CandidateBlock<K, T>;
-
-  const Vec<D>* x = nullptr;           // the positions (the particle set's)
-  std::array<const double*, K> src{};  // the other columns in double
-  std::array<const T*, K> rest{};      // the other columns in float
-  std::array<double, K> pad = position_pad<K, D>();
-
-  SurfaceBlock(const LevelColumns<D>& c, std::array<const T*, N> extra) : x(c.pos) {
-    for (int k = 0; k < N; ++k) {
-      if constexpr (kFloat)
-        rest[D + k] = extra[k];
-      else
-        src[D + k] = extra[k];
-    }
-  }
-  void gather(Block& blk, const CellGrid<D>& grid, std::int64_t cell, Groups g) const {
-    blk.gather(x, src, pad, grid, cell, g, kFloat ? &rest : nullptr);
-  }
-};
-
-// x_i in block blk's frame, as hi + lo (lo unused in double).
-template <int D, class Block, class T>
-void frame_of(const LevelColumns<D>& c, std::size_t i, const Block& blk, T (&hi)[3], T (&lo)[3]) {
-  double x[3] = {0, 0, 0};
-  for (int d = 0; d < D; ++d) x[d] = c.pos[i][d];
-  blk.frame(x, hi, lo);
-}
-
-// The volume column of the blocks: the level's float copy in mixed precision; the one without
-// buffer particles when the fields are summed across levels.
-template <class T, int D>
-const T* volume_column(const LevelColumns<D>& c) {
-  if constexpr (std::is_same_v<T, float>)
-    return c.f.svol.empty() ? c.f.vol.data() : c.f.svol.data();
-  else
-    return c.svol.empty() ? c.vol.data() : c.svol.data();
-}
 
 // Pass 1 of particle i over its block (columns x, V): M in s0..s2 (xx, xy, yy), grad C in s3, s4,
 // div r in s5, the Shepard sum in s6, G = sum_j V_j |grad_i W_ij| in s7 (2D) or s11 (3D) and, in
@@ -103,14 +58,21 @@ void pass1_particle(const SolverParams<D>& prm, const typename SurfaceBlock<D, 1
       prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), P{}, sum, unused, xi_lo);
 }
 
-// Pass 1's sums of particle x over the other levels' fluid (solver/cross_level.hpp); returns
-// the number of such neighbours.
+// Pass 1's sums of particle x over the levels of `sources` with `kernel` (solver/cross_level.hpp;
+// walls: the own level's walls too); returns the number of neighbours.
 template <int D, class T, bool kGradW>
-std::size_t pass1_across(const std::vector<CrossSource<D>>& cross, const Vec<D>& x,
-                         double (&sum)[12]) {
+std::size_t pass1_across(const std::vector<CrossSource<D>>& sources, const WendlandC2<D>& kernel,
+                         const Vec<D>& x, bool walls, double (&sum)[12]) {
   using P = Pass1Pair<D, T, kGradW>;
   auto no_more = [](const CrossSource<D>&, std::uint32_t, Neighbour<P::S::K, T>&) {};
-  return cross_sums<D, P::S::K, P::kSums, T>(cross, x, no_more, P{}, sum);
+  return cross_sums<D, P::S::K, P::kSums, T>(sources, kernel, x, walls, no_more, P{}, sum);
+}
+template <int D, class T>
+std::size_t pass1_across(bool grad_w, const std::vector<CrossSource<D>>& sources,
+                         const WendlandC2<D>& kernel, const Vec<D>& x, bool walls,
+                         double (&sum)[12]) {
+  return grad_w ? pass1_across<D, T, true>(sources, kernel, x, walls, sum)
+                : pass1_across<D, T, false>(sources, kernel, x, walls, sum);
 }
 
 // M_i and grad C_i from the pass-1 slots.
@@ -134,22 +96,8 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   const bool grad_w = prm.sigma > 0.0;  // read by pass 2 only
   sf.grad_w.assign(grad_w ? ps.size() : 0, 0.0);
   sf.cross_hit.assign(sf.cross.empty() ? 0 : ps.size(), 0);
-  auto body = [&](std::int64_t ii, typename S::Block& blk) {
-    const auto i = static_cast<std::size_t>(ii);
-    if (ps.kind[i] == Kind::wall) return;
-    double s[12] = {};
-    src.gather(blk, grid, grid.particle_cells()[i], Groups::all);
-    T xi[3], xi_lo[3];
-    frame_of(cols, i, blk, xi, xi_lo);
-    if (grad_w)
-      pass1_particle<D, T, true>(prm, blk, xi, xi_lo, s);
-    else
-      pass1_particle<D, T, false>(prm, blk, xi, xi_lo, s);
-    if (!sf.cross.empty()) {
-      const std::size_t hits = grad_w ? pass1_across<D, T, true>(sf.cross, ps.pos[i], s)
-                                      : pass1_across<D, T, false>(sf.cross, ps.pos[i], s);
-      sf.cross_hit[i] = hits > 0 ? 1 : 0;
-    }
+  // The fields of particle i from its pass-1 slots; w_self = W(0) of its kernel.
+  auto finish = [&](std::size_t i, const double(&s)[12], double w_self) {
     Mat<D> m;
     Vec<D> grad_c;
     assemble_pass1<D>(s, m, grad_c);
@@ -159,10 +107,58 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
     sf.grad_c[i] = grad_c;
     sf.div_r[i] = s[5];
     const double vol_i = ps.mass[i] / ps.rho[i] * (cols.weight.empty() ? 1.0 : cols.weight[i]);
-    sf.shepard[i] = shepard_pair(vol_i, w0) + s[6];  // self + neighbours
+    sf.shepard[i] = shepard_pair(vol_i, w_self) + s[6];  // self + neighbours
     if (grad_w) sf.grad_w[i] = s[D == 3 ? 11 : 7];
   };
+  auto body = [&](std::int64_t ii, typename S::Block& blk) {
+    const auto i = static_cast<std::size_t>(ii);
+    if (ps.kind[i] == Kind::wall) return;
+    double s[12] = {};
+    const double h_wide = sf.h_wide.empty() ? 0.0 : sf.h_wide[i];
+    if (h_wide > 0.0) {  // the own level too through the wide kernel, not the blocks
+      pass1_across<D, T>(grad_w, sf.wide, WendlandC2<D>(h_wide), ps.pos[i], true, s);
+      sf.cross_hit[i] = 1;
+      finish(i, s, WendlandC2<D>(h_wide).w(0.0));
+      return;
+    }
+    src.gather(blk, grid, grid.particle_cells()[i], Groups::all);
+    T xi[3], xi_lo[3];
+    frame_of(cols, i, blk, xi, xi_lo);
+    if (grad_w)
+      pass1_particle<D, T, true>(prm, blk, xi, xi_lo, s);
+    else
+      pass1_particle<D, T, false>(prm, blk, xi, xi_lo, s);
+    if (!sf.cross.empty())
+      sf.cross_hit[i] = pass1_across<D, T>(grad_w, sf.cross, prm.kernel, ps.pos[i], false, s) > 0;
+    finish(i, s, w0);
+  };
   exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
+}
+
+// Pass 2's pair term: (lambda_j - lambda_ref) V_j F_ij r_ij (physics/surface_tension.hpp).
+template <int D, class T, int K>
+struct LambdaGradientPair {
+  T lambda_ref;
+  [[gnu::always_inline]] PairSumsT<T> operator()(const PairGeometryT<T>& g,
+                                                 const Neighbour<K, T>& nb) const {
+    PairSumsT<T> a;
+    const T c = lambda_gradient_pair(nb[D + 1], lambda_ref, nb[D], g.f);
+    a.s0 = c * g.rx, a.s1 = c * g.ry;
+    if constexpr (D == 3) a.s2 = c * g.rz;
+    return a;
+  }
+};
+
+// Pass 2 of particle i with its wide kernel of h (SurfaceFields::h_wide) over sf.wide.
+template <int D, class T, int K>
+Vec<D> wide_normal(const SurfaceFields<D>& sf, std::size_t i, const Vec<D>& x, T lambda_ref,
+                   double h, double eps) {
+  double s[12] = {};
+  cross_sums<D, K, D, T>(sf.wide, WendlandC2<D>(h), x, false, &load_lambda<D, K, T>,
+                         LambdaGradientPair<D, T, K>{lambda_ref}, s);
+  Vec<D> sum;
+  for (int d = 0; d < D; ++d) sum[d] = s[d];
+  return normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, sf.lambda[i], eps, h);
 }
 
 template <int D, class T>
@@ -189,11 +185,17 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     const T lambda_ref = static_cast<T>(difference ? lambda_i : 0.0);  // difference form
     const std::int64_t cell = grid.particle_cells()[i];
     const bool across = !sf.cross_hit.empty() && sf.cross_hit[i] != 0;
+    const double h_wide = sf.h_wide.empty() ? 0.0 : sf.h_wide[i];
     if (difference && !sf.grad_w.empty() && !across) {  // the bound knows this level only
       lambda_range<D>(grid, cell, lambda_col, sc);
       const double limit = prm.surface_tension.normal_epsilon * lambda_i / prm.h;
       if (normal_surely_zero<D, T>(sc.lo, sc.hi, lambda_ref, sf.l_corr[i], sf.grad_w[i], limit))
         return;  // the normal stays 0
+    }
+    const double eps = prm.surface_tension.normal_epsilon;
+    if (h_wide > 0.0) {  // the own level too through the wide kernel, not the blocks
+      sf.normal[i] = wide_normal<D, T, S::K>(sf, i, ps.pos[i], lambda_ref, h_wide, eps);
+      return;
     }
     auto& blk = sc.blk;
     src.gather(blk, grid, cell, Groups::fluid);
@@ -201,27 +203,17 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     frame_of(cols, i, blk, xi, xi_lo);
     double s[12] = {}, unused = -1e300;
     auto pair = [=](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
-      PairSumsT<T> a;
-      const T c = lambda_gradient_pair(nb[D + 1], lambda_ref, nb[D], g.f);
-      a.s0 = c * g.rx, a.s1 = c * g.ry;
-      if constexpr (D == 3) a.s2 = c * g.rz;
-      return a;
+      return LambdaGradientPair<D, T, S::K>{lambda_ref}(g, nb);
     };
     sweep_pairs<D, S::K, D, false, S::KL>(
         prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused, xi_lo);
     if (across) {
-      // A source whose lambda is not sized to its particles (its pass 1 has not run yet: the
-      // first evaluation with local time stepping) counts as interior, lambda 1.
-      auto lambda_j = [](const CrossSource<D>& c, std::uint32_t j, Neighbour<S::K, T>& nb) {
-        const std::vector<double>& l = *c.lambda;
-        nb.c[D + 1] = static_cast<T>(l.size() == c.ps->size() ? l[j] : 1.0);
-      };
-      cross_sums<D, S::K, D, T>(sf.cross, ps.pos[i], lambda_j, pair, s);
+      cross_sums<D, S::K, D, T>(sf.cross, prm.kernel, ps.pos[i], false, &load_lambda<D, S::K, T>,
+                                pair, s);
     }
     Vec<D> sum;
     for (int d = 0; d < D; ++d) sum[d] = s[d];
-    sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i,
-                                                  prm.surface_tension.normal_epsilon, prm.h);
+    sf.normal[i] = normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, lambda_i, eps, prm.h);
   };
   exec::for_each_with<Scratch>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
@@ -230,10 +222,10 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
 // physics/surface_tension.hpp (kappa, a, b in s0..s2) over the neighbours that pass S_ij.
 template <int D, class T>
 CurvatureSums curvature_particle(const SolverParams<D>& prm,
-                                 const typename SurfaceBlock<D, D + 1, T>::Block& blk,
+                                 const typename SurfaceBlock<D, D + 1, T>::Block* blk,
                                  const T (&xi)[3], const T (&xi_lo)[3], const Vec<D, T>& n_i,
                                  const Mat<D, T>& l_i, const std::vector<CrossSource<D>>* cross,
-                                 const Vec<D>& x_i) {
+                                 const Vec<D>& x_i, const WendlandC2<D>& kernel) {
   using S = SurfaceBlock<D, D + 1, T>;
   auto pair = [=](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
     PairSumsT<T> s;
@@ -248,16 +240,12 @@ CurvatureSums curvature_particle(const SolverParams<D>& prm,
     return s;
   };
   double s[12] = {}, unused = -1e300;
-  sweep_pairs<D, S::K, 3, false, S::KL>(
-      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused, xi_lo);
-  if (cross != nullptr) {  // a source without normals yet (see pass 2) counts none
-    auto normal_j = [](const CrossSource<D>& c, std::uint32_t j, Neighbour<S::K, T>& nb) {
-      const std::vector<Vec<D>>& n = *c.normal;
-      for (int k = 0; k < D; ++k)
-        nb.c[D + 1 + k] = static_cast<T>(n.size() == c.ps->size() ? n[j][k] : 0.0);
-    };
-    cross_sums<D, S::K, 3, T>(*cross, x_i, normal_j, pair, s);
+  if (blk != nullptr) {  // null: the wide kernel, over `cross` alone (its own level first)
+    sweep_pairs<D, S::K, 3, false, S::KL>(
+        prm.kernel, xi, blk->col, static_cast<std::ptrdiff_t>(blk->len), pair, s, unused, xi_lo);
   }
+  if (cross != nullptr)
+    cross_sums<D, S::K, 3, T>(*cross, kernel, x_i, false, &load_normal<D, S::K, T>, pair, s);
   return CurvatureSums{s[0], s[1], s[2]};
 }
 
@@ -289,13 +277,17 @@ void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const 
     sf.acc_st[i] = Vec<D>{};
     const Vec<D> n_i = sf.normal[i];
     if (ps.kind[i] == Kind::wall || norm2(n_i) == 0.0) return;
-    src.gather(blk, grid, grid.particle_cells()[i], Groups::fluid);
-    T xi[3], xi_lo[3];
-    frame_of(cols, i, blk, xi, xi_lo);
     const bool across = !sf.cross_hit.empty() && sf.cross_hit[i] != 0;
-    const CurvatureSums sums =
-        curvature_particle<D, T>(prm, blk, xi, xi_lo, vec_cast<T>(n_i), mat_cast<T>(sf.l_corr[i]),
-                                 across ? &sf.cross : nullptr, ps.pos[i]);
+    const double h_wide = sf.h_wide.empty() ? 0.0 : sf.h_wide[i];
+    T xi[3] = {}, xi_lo[3] = {};
+    if (h_wide == 0.0) {
+      src.gather(blk, grid, grid.particle_cells()[i], Groups::fluid);
+      frame_of(cols, i, blk, xi, xi_lo);
+    }
+    const auto* sources = h_wide > 0.0 ? &sf.wide : (across ? &sf.cross : nullptr);
+    const CurvatureSums sums = curvature_particle<D, T>(
+        prm, h_wide > 0.0 ? nullptr : &blk, xi, xi_lo, vec_cast<T>(n_i), mat_cast<T>(sf.l_corr[i]),
+        sources, ps.pos[i], h_wide > 0.0 ? WendlandC2<D>(h_wide) : prm.kernel);
     const SurfaceTensionParams& st = prm.surface_tension;
     const double kappa = st.curvature_correction ? corrected_curvature<D>(sums) : sums.kappa;
     sf.curvature[i] = kappa;

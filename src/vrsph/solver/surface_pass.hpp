@@ -42,9 +42,11 @@ struct SurfaceFields {
 
   // Surface fields across levels (solver/cross_level.hpp): the other levels' fluid as further
   // neighbours (empty: none), and which particles found any in pass 1 (passes 2 and 3 look for
-  // them only there).
-  std::vector<CrossSource<D>> cross;
+  // them only there). h_wide[i] > 0 (empty: none): particle i sums with a kernel of that h over
+  // `wide` (its own level, then the others) instead of its blocks.
+  std::vector<CrossSource<D>> cross, wide;
   std::vector<std::uint8_t> cross_hit;
+  std::vector<double> h_wide;
 
   // Sizes the arrays pass 1 writes, and sizes the others without touching their values (a pass 1
   // alone leaves what passes 2 and 3 wrote).

@@ -75,12 +75,18 @@ void LevelCoupling<D>::volume_weights(std::vector<Level<D>>& levels, std::size_t
   });
 }
 
-// The levels next to l (its parent and its children) as sources of l's surface passes, each
-// with the pair kernel of h_ij = (h_l + h_o) / 2; none when off or with a single level.
+// The levels next to l (its parent and its children) as sources of l's surface passes; none when
+// off or with a single level. Kernels (solver/cross_level.hpp): each particle sums with one h
+// over all its neighbours (a gather kernel), so that every neighbour set it sees is resolved:
+// the level's own h, except where a coarser parent's fluid is in reach. There, within 2 h_p of
+// the box (the parent's whole support) the particle takes h_p for every neighbour, own and
+// parent alike, and over the next 2 h_p its h falls linearly to the level's own (sf.h_wide).
 template <int D>
 void LevelCoupling<D>::cross_sources(std::vector<Level<D>>& levels, std::size_t l) const {
   Level<D>& L = levels[l];
   L.sf.cross.clear();
+  L.sf.wide.clear();
+  L.sf.h_wide.clear();
   const bool on = multi_level() && opt_.surface_across_levels;
   L.cols.surface_without_buffers = on;
   if (!on) return;
@@ -90,9 +96,21 @@ void LevelCoupling<D>::cross_sources(std::vector<Level<D>>& levels, std::size_t 
   for (const auto& c : region.children) others.push_back(c.level);
   for (const int o : others) {
     const Level<D>& O = levels[static_cast<std::size_t>(o)];
-    L.sf.cross.push_back(
-        {&O.ps, &O.grid, &O.sf.lambda, &O.sf.normal, WendlandC2<D>(0.5 * (L.prm.h + O.prm.h))});
+    L.sf.cross.push_back({&O.ps, &O.grid, &O.sf.lambda, &O.sf.normal, false});
   }
+  if (region.parent < 0 || !region.has_box) return;
+  const double h_p = levels[static_cast<std::size_t>(region.parent)].prm.h, h = L.prm.h;
+  if (h_p <= h) return;
+  L.sf.wide.push_back({&L.ps, &L.grid, &L.sf.lambda, &L.sf.normal, true});
+  L.sf.wide.insert(L.sf.wide.end(), L.sf.cross.begin(), L.sf.cross.end());
+  L.sf.h_wide.assign(L.ps.size(), 0.0);
+  exec::for_each(static_cast<std::int64_t>(L.ps.size()), [&](std::int64_t i) {
+    if (L.ps.kind[i] == Kind::wall) return;
+    const Vec<D>& x = L.ps.pos[i];
+    const double d = region.box.contains(x) ? region.box.distance_inside(x) : 0.0;
+    const double s = (d - 2.0 * h_p) / (2.0 * h_p);  // 0 .. 1 across the blend
+    if (s < 1.0) L.sf.h_wide[i] = s <= 0.0 ? h_p : h_p + s * (h - h_p);
+  });
 }
 
 template <int D>
