@@ -152,6 +152,38 @@ TEST(CellGridGeometry, CircleFillsHaveTheCircleArea) {
   }
 }
 
+// fill = "rings_on_radius": the outer ring on R, a single particle at the centre (R a whole
+// number of dp), and the particles standing for the disc of radius R + dp / 2.
+TEST(CellGridGeometry, RingsOnTheRadiusPutTheOuterRingOnR) {
+  const double dp = 1e-4, r = 0.002;
+  CaseSpec s = geometry_spec(2, dp);
+  FluidBlock f;
+  f.shape = BlockShape::circle;
+  f.center = {0.0, 0.0, 0.0};
+  f.radius = r;
+  f.fill = FillMode::rings_on_radius;
+  s.fluid_blocks = {f};
+  const ParticleSet<2> ps = build_particles<2>(s).particles;
+  const double n = static_cast<double>(ps.count(Kind::fluid));
+  const double expected = std::numbers::pi * (r + 0.5 * dp) * (r + 0.5 * dp) / (dp * dp);
+  std::printf(
+      "[ geometry ] rings on the radius, R/dp = 20: %.0f particles (pi (R + dp/2)^2 / "
+      "dp^2 = %.1f)\n",
+      n, expected);
+  EXPECT_NEAR(n / expected, 1.0, 0.02);
+  double r_max = 0.0, r_min = 1.0;
+  std::size_t on_r = 0;
+  for (const auto& x : ps.pos) {
+    r_max = std::max(r_max, norm(x));
+    r_min = std::min(r_min, norm(x));
+    if (std::abs(norm(x) - r) < 1e-12) ++on_r;
+  }
+  EXPECT_NEAR(r_max, r, 1e-12);
+  EXPECT_LT(r_min, 1e-15);  // the centre particle
+  EXPECT_EQ(on_r, static_cast<std::size_t>(std::lround(2 * std::numbers::pi * r / dp)));
+  EXPECT_GE(min_distance(ps, dp), 0.8 * dp);
+}
+
 // Longest run of neighbouring rings k, k+1, ... that each have a particle on one common ray
 // (each within 0.1 dp of arc of the previous ring's particle), for a ring fill centred at the
 // origin.

@@ -80,8 +80,10 @@ inline constexpr EnumName<ShiftingModel> kShiftingNames[] = {{"none", ShiftingMo
                                                              {"skillen", ShiftingModel::skillen}};
 inline constexpr EnumName<BlockShape> kBlockShapeNames[] = {
     {"circle", BlockShape::circle}, {"sphere", BlockShape::sphere}, {"box", BlockShape::box}};
-inline constexpr EnumName<FillMode> kFillNames[] = {
-    {"lattice", FillMode::lattice}, {"rings", FillMode::rings}, {"cells", FillMode::cells}};
+inline constexpr EnumName<FillMode> kFillNames[] = {{"lattice", FillMode::lattice},
+                                                    {"rings", FillMode::rings},
+                                                    {"rings_on_radius", FillMode::rings_on_radius},
+                                                    {"cells", FillMode::cells}};
 inline constexpr EnumName<WallShape> kWallShapeNames[] = {{"tank", WallShape::tank},
                                                           {"box", WallShape::box}};
 inline constexpr EnumName<OutputPrecision> kPrecisionNames[] = {

@@ -195,8 +195,10 @@ FluidBlock parse_fluid_block(const TableReader& r, const CaseSpec& spec) {
     r.require("radius", b.radius >= spec.dp, fmt::format("must be >= resolution.dp ({})", spec.dp));
   }
   b.fill = r.opt_enum("fill", kFillNames).value_or(b.fill);
-  r.require("fill", b.fill != FillMode::rings || b.shape == BlockShape::circle,
-            "\"rings\" needs shape = \"circle\" (2D only)");
+  r.require("fill",
+            (b.fill != FillMode::rings && b.fill != FillMode::rings_on_radius) ||
+                b.shape == BlockShape::circle,
+            "\"rings\" and \"rings_on_radius\" need shape = \"circle\" (2D only)");
   r.require("fill", b.fill != FillMode::cells || b.shape == BlockShape::box,
             "\"cells\" needs shape = \"box\"");
   b.velocity = r.opt_vector("velocity", dim).value_or(Vec3d{});

@@ -24,7 +24,7 @@ enum class BlockShape { circle, sphere, box };
 // lattice: nodes from min (box) or a lattice centred on the centre (round shapes), every dp;
 // rings: concentric rings (circles); cells: the centres of the dp cells that tile a box, so its
 // faces lie dp/2 beyond the outer rows at every resolution level.
-enum class FillMode { lattice, rings, cells };
+enum class FillMode { lattice, rings, rings_on_radius, cells };
 // refinement.N.buffer_rounding: buffer shells exactly buffer_width x h, or that width rounded up
 // to a whole number of the level's dp (as DualSPHysics lays its buffers).
 enum class BufferRounding { none, whole_dp };

@@ -72,13 +72,19 @@ void fill_ball_lattice(const Vec<D>& c, double radius, double dp, Fn&& fn) {
 // rays at 2 pi (g + m) / 6. The quadratic sequence's increments (2k + 1) g vary irrationally,
 // which leaves no chain of radially aligned particles longer than a few rings. Measured effect
 // of the seam: docs/validation.md, "Figures formerly in code comments".
+// on_radius ("rings_on_radius"): the rings at R - k dp instead, the outer one on R itself and
+// the innermost at R - floor(R / dp) dp (a single particle when that is 0), so the particles
+// stand for the disc of radius about R + dp / 2 (docs/cases.md).
 template <class Fn>
-void fill_circle_rings(const Vec<2>& c, double radius, double dp, Fn&& fn) {
+void fill_circle_rings(const Vec<2>& c, double radius, double dp, bool on_radius, Fn&& fn) {
   const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
-  const long rings = std::lround(radius / dp);
+  const long inner = static_cast<long>(std::floor(radius / dp + 1e-9));
+  const long rings = on_radius ? inner + 1 : std::lround(radius / dp);
+  const double r0 = radius - static_cast<double>(inner) * dp;  // on_radius only
   for (long k = 0; k < rings; ++k) {
-    const double r = (k + 0.5) * dp;
-    const long count = std::max(1L, std::lround(2.0 * std::numbers::pi * r / dp));
+    const double r = on_radius ? std::max(r0 + static_cast<double>(k) * dp, 0.0) : (k + 0.5) * dp;
+    const long count =
+        r < 1e-9 * dp ? 1 : std::max(1L, std::lround(2.0 * std::numbers::pi * r / dp));
     const double kk = static_cast<double>(k) * static_cast<double>(k) * golden;
     const double turn = kk - std::floor(kk);
     for (long q = 0; q < count; ++q) {
@@ -111,8 +117,9 @@ void visit_nodes(const CaseSpec& spec, double dp, FluidFn&& fluid, WallBlockFn&&
         for_each_node<D>(lo, hi, dp, add);
     } else {
       if constexpr (D == 2) {
-        if (b.fill == FillMode::rings)
-          fill_circle_rings(to_vec<2>(b.center), b.radius, dp, add);
+        if (b.fill == FillMode::rings || b.fill == FillMode::rings_on_radius)
+          fill_circle_rings(to_vec<2>(b.center), b.radius, dp, b.fill == FillMode::rings_on_radius,
+                            add);
         else
           fill_ball_lattice<D>(to_vec<D>(b.center), b.radius, dp, add);
       } else {
