@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "case_util.hpp"
+#include "vres_fixtures.hpp"
 #include "vrsph/analysis/front.hpp"
 #include "vrsph/setup/case_parser.hpp"
 #include "vrsph/sim/simulation.hpp"
@@ -151,35 +152,7 @@ TEST(VresStillTank, InterfaceStaysStill) {
 // box. Over t the flux is rho U H t; the child must create that mass at its outer buffer face
 // (within 1%) and the parent delete it past its buffer.
 TEST(VresFlux, CreatedMassMatchesFlux) {
-  CaseSpec spec = case_from_text(R"(
-[case]
-name = "flux"
-dimension = 2
-end_time = 0.1
-[fluid]
-kinematic_viscosity = 1.0e-4
-gravity = [0.0, 0.0]
-[eos]
-max_speed = 1.0
-[resolution]
-dp = 0.01
-[numerics]
-viscosity = { model = "laminar" }
-density_diffusion = { model = "molteni", delta = 0.1 }
-[[fluid_block]]
-shape = "box"
-min = [-0.6, 0.0]
-max = [0.3, 0.39]
-velocity = [1.0, 0.0]
-[domain]
-min = [-1.0, -0.5]
-max = [1.5, 0.9]
-[[refinement]]
-min = [0.0, -0.3]
-max = [0.8, 0.7]
-[output]
-interval = 0.1
-)");
+  CaseSpec spec = case_from_text(test::kUniformFlowThroughAFace);
   Simulation<2> sim(spec);
   const double m0 = fluid_mass(sim);
   while (sim.time() < spec.end_time - 1e-12) sim.step();

@@ -7,6 +7,7 @@
 
 #include "case_parser_fixtures.hpp"
 #include "case_util.hpp"
+#include "vres_fixtures.hpp"
 #include "vrsph/sim/simulation.hpp"
 #include "vrsph/vres/levels.hpp"
 
@@ -85,37 +86,8 @@ TEST(VresRamp, CoupledRunPacksTheWeights) {
 // without the ramp): the created particles start 0.49 dp further out and so reach the fluid
 // region 0.0049 s later, about 2 kg/m in transit (0.56% of the fluid), a lag, not a loss.
 TEST(VresRamp, FlowThroughAnInterfaceKeepsItsMass) {
-  CaseSpec spec = parse_case(toml::parse(R"(
-[case]
-name = "flux"
-dimension = 2
-end_time = 0.1
-[fluid]
-kinematic_viscosity = 1.0e-4
-gravity = [0.0, 0.0]
-[eos]
-max_speed = 1.0
-[resolution]
-dp = 0.01
-[numerics]
-viscosity = { model = "laminar" }
-density_diffusion = { model = "molteni", delta = 0.1 }
-vres_buffer_ramp = 1.0
-[[fluid_block]]
-shape = "box"
-min = [-0.6, 0.0]
-max = [0.3, 0.39]
-velocity = [1.0, 0.0]
-[domain]
-min = [-1.0, -0.5]
-max = [1.5, 0.9]
-[[refinement]]
-min = [0.0, -0.3]
-max = [0.8, 0.7]
-[output]
-interval = 0.1
-)"),
-                             "test");
+  CaseSpec spec = parse_case(toml::parse(test::kUniformFlowThroughAFace), "test");
+  spec.vres_buffer_ramp = 1.0;
   Simulation<2> sim(spec);
   double m0 = 0.0;
   sim.fluid_momentum(m0);
