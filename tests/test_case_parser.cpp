@@ -40,6 +40,7 @@ surface_tension = { lambda_threshold = 0.75, normal_epsilon = 0.11, surface_offs
 hydrostatic_initial_density = false
 vres_conserve_momentum = true
 vres_buffer_fill_min = 0.3
+vres_buffer_surface = "donor"
 [[fluid_block]]
 shape = "circle"
 center = [0.001, -0.0005]
@@ -211,6 +212,7 @@ TEST(CaseParser, RoundTripEveryKey) {
   EXPECT_TRUE(s.numerics.surface_tension.curvature_correction);
   EXPECT_TRUE(s.vres_conserve_momentum);
   EXPECT_EQ(s.vres_buffer_fill_min, 0.3);
+  EXPECT_EQ(s.vres_buffer_surface, BufferSurface::donor);
 }
 
 // buffer_rounding is per box, "none" where not given.

@@ -94,6 +94,8 @@ inline constexpr EnumName<SurfaceRefresh> kRefreshNames[] = {
     {"every_step", SurfaceRefresh::every_step}, {"capillary", SurfaceRefresh::capillary}};
 inline constexpr EnumName<BufferRounding> kBufferRoundingNames[] = {
     {"none", BufferRounding::none}, {"whole_dp", BufferRounding::whole_dp}};
+inline constexpr EnumName<BufferSurface> kBufferSurfaceNames[] = {
+    {"own", BufferSurface::own}, {"edge", BufferSurface::edge}, {"donor", BufferSurface::donor}};
 inline constexpr EnumName<OutputCompression> kCompressionNames[] = {
     {"none", OutputCompression::none}, {"zlib", OutputCompression::zlib}};
 

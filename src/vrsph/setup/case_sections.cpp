@@ -170,6 +170,8 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
       r.opt_number("vres_buffer_ramp", kBufferRamp).value_or(spec.vres_buffer_ramp);
   spec.vres_surface_across_levels =
       r.opt_bool("vres_surface_across_levels").value_or(spec.vres_surface_across_levels);
+  spec.vres_buffer_surface =
+      r.opt_enum("vres_buffer_surface", kBufferSurfaceNames).value_or(spec.vres_buffer_surface);
   n.hydrostatic_initial_density =
       r.opt_bool("hydrostatic_initial_density").value_or(n.hydrostatic_initial_density);
   n.local_time_stepping = r.opt_bool("local_time_stepping").value_or(n.local_time_stepping);

@@ -28,6 +28,11 @@ enum class FillMode { lattice, rings, rings_on_radius, cells };
 // refinement.N.buffer_rounding: buffer shells exactly buffer_width x h, or that width rounded up
 // to a whole number of the level's dp (as DualSPHysics lays its buffers).
 enum class BufferRounding { none, whole_dp };
+// numerics.vres_buffer_surface: where buffer particles take lambda and the normal from. own:
+// their own level's sums (as Ricci et al. 2024 and DualSPHysics); edge: from the other level's
+// fluid near the outer edge of their shell, where their own support is cut (vrsph's default);
+// donor: from the other level's fluid everywhere in the shell.
+enum class BufferSurface { own, edge, donor };
 enum class WallShape { tank, box };
 // output.precision: how the particle fields of a snapshot are stored (positions stay double).
 enum class OutputPrecision { float64, float32 };
@@ -125,6 +130,7 @@ struct CaseSpec {
   double vres_buffer_fill_min = 0.0;    // buffer particles below this donor fill are deleted
   double vres_buffer_ramp = 0.0;        // dp: buffer volumes ramp to 0 over this at the outer edge
   bool vres_surface_across_levels = false;  // surface passes over the fluid of both levels
+  BufferSurface vres_buffer_surface = BufferSurface::edge;  // buffers' lambda and normal
 
   // geometry
   std::vector<FluidBlock> fluid_blocks;

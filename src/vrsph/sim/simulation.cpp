@@ -72,9 +72,10 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
   }
   counters_.next_id = next_id;
-  const CouplingOptions opt{spec.vres_conserve_momentum,
-                            spec.numerics.surface_tension.zero_net_force, spec.vres_buffer_fill_min,
-                            spec.vres_buffer_ramp, spec.vres_surface_across_levels};
+  const CouplingOptions opt{
+      spec.vres_conserve_momentum,     spec.numerics.surface_tension.zero_net_force,
+      spec.vres_buffer_fill_min,       spec.vres_buffer_ramp,
+      spec.vres_surface_across_levels, spec.vres_buffer_surface};
   coupling_ = LevelCoupling<D>(std::move(links), opt);
 
   // One domain for all levels, from the level-0 particles.

@@ -30,6 +30,8 @@ constexpr double kBufferNormalReach = 2.0;
 // (docs/validation.md, "Figures formerly in code comments"), not derived. An averaged normal keeps
 // its direction where most of the donor weight has a normal (|average| >= 1/2), and is zero
 // otherwise.
+// numerics.vres_buffer_surface: "edge" is the above; "donor" gives every buffer particle the
+// other level's value (reach without limit); "own" none (the published coupling).
 template <int D>
 template <class T>
 void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std::size_t l,
@@ -43,7 +45,8 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
     if (L.ps.kind[i] != Kind::buffer) return;
     const ZoneInfo<D> z = region.classify(L.ps.pos[i]);
     if (z.donor < 0) return;  // moved into the fluid region during the step: kind changes later
-    if (z.depth + reach_h * L.prm.h <= z.width) return;  // own support inside fluid + shell
+    if (opt_.buffer_surface == BufferSurface::edge && z.depth + reach_h * L.prm.h <= z.width)
+      return;  // own support inside fluid + shell
     const Level<D>& dl = levels[static_cast<std::size_t>(z.donor)];
     const std::vector<T>& donor_field = dl.sf.*field;
     if (donor_field.size() != dl.ps.size()) return;  // the donor holds no such field yet
@@ -121,13 +124,13 @@ void LevelCoupling<D>::before_pack(std::vector<Level<D>>& levels, std::size_t l)
 
 template <int D>
 void LevelCoupling<D>::after_surface_sums(std::vector<Level<D>>& levels, std::size_t l) const {
-  if (multi_level() && !opt_.surface_across_levels)
+  if (exchanges_buffer_fields())
     exchange_buffer_field(levels, l, &SurfaceFields<D>::lambda, kBufferLambdaReach);
 }
 
 template <int D>
 void LevelCoupling<D>::after_normals(std::vector<Level<D>>& levels, std::size_t l) const {
-  if (multi_level() && !opt_.surface_across_levels)
+  if (exchanges_buffer_fields())
     exchange_buffer_field(levels, l, &SurfaceFields<D>::normal, kBufferNormalReach);
 }
 

@@ -12,6 +12,7 @@
 #include <functional>
 #include <vector>
 
+#include "vrsph/setup/case_spec.hpp"
 #include "vrsph/solver/level.hpp"
 #include "vrsph/vres/coupling.hpp"
 
@@ -23,6 +24,7 @@ struct CouplingOptions {
   double buffer_fill_min = 0.0;         // numerics.vres_buffer_fill_min
   double buffer_ramp = 0.0;             // numerics.vres_buffer_ramp, in dp of each level
   bool surface_across_levels = false;   // numerics.vres_surface_across_levels
+  BufferSurface buffer_surface = BufferSurface::edge;  // numerics.vres_buffer_surface
 };
 
 template <int D>
@@ -33,6 +35,12 @@ class LevelCoupling {
       : links_(std::move(links)), opt_(opt) {}
 
   bool multi_level() const { return links_.size() > 1; }
+  // Whether buffer particles take lambda and the normal from the other level
+  // (exchange_buffer_field).
+  bool exchanges_buffer_fields() const {
+    return multi_level() && !opt_.surface_across_levels &&
+           opt_.buffer_surface != BufferSurface::own;
+  }
   // Whether the force pass must give buffer particles their reaction (momentum.hpp).
   bool wants_buffer_reaction() const { return opt_.conserve_momentum && multi_level(); }
   const LevelLink<D>& link(std::size_t k) const { return links_[k]; }

@@ -1,0 +1,77 @@
+// Where buffer particles take lambda and the normal from (numerics.vres_buffer_surface;
+// vres/level_coupling.cpp exchange_buffer_field; issue #20 item 4, the coupling as published):
+// their own level's sums ("own"), the other level's fluid near the outer edge of their shell
+// ("edge", the default) or everywhere in it ("donor"). droplet_vr_2d at dp 2e-4 / 1e-4, t = 0.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "case_parser_fixtures.hpp"
+#include "case_util.hpp"
+#include "vrsph/sim/simulation.hpp"
+
+namespace vrsph {
+namespace {
+
+using test::load_case;
+
+struct BufferLambda {
+  double lowest = 1.0;   // lowest lambda of the interior buffer particles (r < 1.2 mm)
+  double largest_dev = 0.0;  // largest |lambda - 1| among them
+  std::size_t count = 0;
+};
+
+BufferLambda interior_buffer_lambda(const std::string& mode) {
+  CaseSpec spec = load_case("droplet_vr_2d.toml",
+                            {"resolution.dp=2e-4", "numerics.vres_buffer_surface=\"" + mode + "\""});
+  Simulation<2> sim(spec);
+  sim.update_surface_fields();
+  BufferLambda out;
+  for (std::size_t l = 0; l < 2; ++l) {
+    const Level<2>& L = sim.level(l);
+    const SurfaceFields<2>& sf = sim.surface_fields(l);
+    for (std::size_t i = 0; i < L.ps.size(); ++i) {
+      if (L.ps.kind[i] != Kind::buffer || norm(L.ps.pos[i]) > 1.2e-3) continue;
+      out.lowest = std::min(out.lowest, sf.lambda[i]);
+      out.largest_dev = std::max(out.largest_dev, std::abs(sf.lambda[i] - 1.0));
+      ++out.count;
+    }
+  }
+  std::printf("vres_buffer_surface \"%s\": %zu interior buffer particles, lowest lambda %.3f\n",
+              mode.c_str(), out.count, out.lowest);
+  return out;
+}
+
+// Inside the drop there is no free surface. With "own" the buffer particles at the outer edge of
+// their shell sum over a support cut by the shell's edge, so their lambda falls far below 1 (measured 0.487: a
+// surface that is not there); "edge" and "donor" replace it with the other level's value, which
+// is about 1 at every interior point.
+TEST(VresBufferSurface, OwnSumsSeeTheShellEdgeAndTheExchangeRemovesIt) {
+  const BufferLambda own = interior_buffer_lambda("own");
+  const BufferLambda edge = interior_buffer_lambda("edge");
+  const BufferLambda donor = interior_buffer_lambda("donor");
+  ASSERT_GT(own.count, 20u);
+  EXPECT_EQ(own.count, edge.count);
+  EXPECT_EQ(own.count, donor.count);
+  EXPECT_LT(own.lowest, 0.8);
+  EXPECT_GT(edge.lowest, 0.85);  // measured 0.905
+  EXPECT_GT(donor.lowest, 0.85);  // measured 0.974
+  EXPECT_LE(donor.largest_dev, edge.largest_dev + 1e-12);
+}
+
+TEST(VresBufferSurface, KeyIsCheckedAndWrittenBack) {
+  using namespace case_fixtures;
+  expect_contains(error_of(std::string(kMinimal) + "[numerics]\nvres_buffer_surface = \"all\"\n"),
+                  {"numerics.vres_buffer_surface", "all", "own"});
+  const CaseSpec s = parse_case(
+      toml::parse(std::string(kMinimal) + "[numerics]\nvres_buffer_surface = \"own\"\n"), "test");
+  EXPECT_EQ(s.vres_buffer_surface, BufferSurface::own);
+  const CaseSpec back = parse_case(toml::parse(case_to_toml(s)), "back");
+  EXPECT_EQ(back.vres_buffer_surface, BufferSurface::own);
+  const CaseSpec dflt = parse_case(toml::parse(std::string(kMinimal)), "default");
+  EXPECT_EQ(dflt.vres_buffer_surface, BufferSurface::edge);
+}
+
+}  // namespace
+}  // namespace vrsph
