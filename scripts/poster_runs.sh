@@ -14,10 +14,14 @@
 #   vres_conserve_momentum, vres_buffer_fill_min; buffers keep their own level's lambda and
 #   normal; shells rounded up to whole dp as DualSPHysics lays them; the square on the lattice
 #   from min), the surface fields refreshed at every step.
+#   Without the net-force correction the drop drifts (about 3 mm by 0.6 s on droplet_2d): these
+#   rows run in a domain of 6 cm (single resolution) or 1.6 cm (VR) and are measured in the
+#   drop's frame with scripts/laplace_centroid.sh.
 # --model vrsph: the shipped case's own options (the case file as it is), with the same start,
 #   end time and buffer width.
 # Extra --set arguments go to vrsph after these (the last one given wins). The run writes csv
-# only; read it with scripts/laplace_window.sh OUT_DIR 0.4 0.5.
+# only; read it with scripts/laplace_window.sh OUT_DIR 0.4 0.5, or for a drop that drifts
+# scripts/laplace_centroid.sh OUT_DIR 0.4 0.5.
 set -euo pipefail
 
 usage() {
@@ -57,7 +61,8 @@ case "$row" in
     case_file=cases/droplet_2d.toml
     sets+=(--set fluid_block.0.pressure=36.4 --set case.end_time=1.0
       --set "fluid_block.0.fill=\"${row#sr_}\"")
-    [ "$model" = published ] && sets+=("${published_st[@]}") ;;
+    [ "$model" = published ] && sets+=("${published_st[@]}" --set 'domain.min=[-0.03,-0.03]'
+      --set 'domain.max=[0.03,0.03]') ;;
   vr_circle_4h|vr_circle_2h|vr_square_4h|vr_square_2h)
     width="${row##*_}"; width="${width%h}.0"
     sets+=(--set "refinement.0.buffer_width=$width" --set case.end_time=0.5)
@@ -68,7 +73,8 @@ case "$row" in
       case_file=cases/square_droplet_vr_2d.toml
       [ "$model" = published ] && sets+=(--set 'fluid_block.0.fill="lattice"')
     fi
-    [ "$model" = published ] && sets+=("${published_vr[@]}") ;;
+    [ "$model" = published ] && sets+=("${published_vr[@]}" --set 'domain.min=[-0.008,-0.008]'
+      --set 'domain.max=[0.008,0.008]') ;;
   *) die "ROW $row: not one of sr_lattice sr_rings sr_rings_on_radius vr_circle_4h vr_circle_2h vr_square_4h vr_square_2h" ;;
 esac
 

@@ -86,4 +86,22 @@ want="probe wall [0, 0.3]: wet 3 of 4, mean_p 20 Pa, max_p 30 Pa at t = 0.2, imp
 if "$root/scripts/probe_window.sh" "$tmp/probe" wall 1 2 2> /dev/null; then
   fail "probe_window.sh accepted a window with no output"
 fi
+# laplace_centroid.sh on a made-up snapshot of a drop moved to (1, 1) mm: the line follows the
+# centroid; particles off the strip (0.6 mm > dp/2 away) and buffer particles are left out; the
+# 2h = 2.6 mm margins keep the samples at |x - 1 mm| <= 6 mm: 13 samples, one at p = 12 Pa and
+# twelve at 10 Pa against 10 Pa: mean 10.1538, rmse sqrt(4/13) = 0.5547.
+lc=$tmp/centroid
+mkdir -p "$lc"
+printf '[resolution]\ndp = 0.001\nh_over_dp = 1.3\n[[output.line]]\nname = "d"\nfrom = [-0.01, 0.0]\nto = [0.01, 0.0]\n[analysis]\nlaplace_pressure = 10.0\n' \
+  > "$lc/case.toml"
+printf 't,step\n0,0\n' > "$lc/series.csv"
+awk 'BEGIN { print "id,level,kind,x,y,vx,vy,rho,p,mass"
+  for (k = -9; k <= 9; k++) {
+    printf "%d,0,fluid,%.6f,0.001,0,0,1000,%g,1\n", k + 9, 0.001 + k * 0.001, k == 0 ? 12 : 10
+    printf "%d,0,fluid,%.6f,0.0016,0,0,1000,100,1\n", k + 30, 0.001 + k * 0.001
+    printf "%d,0,fluid,%.6f,0.0004,0,0,1000,100,1\n", k + 60, 0.001 + k * 0.001 }
+  print "99,0,buffer,0.0015,0.001,0,0,1000,1000,1" }' > "$lc/particles_0000.csv"
+got=$("$root/scripts/laplace_centroid.sh" "$lc" 0 1 | awk '$1 == "0" { print $2, $3, $4, $5, $6 }')
+want="1.0000 1.0000 13 10.1538 0.5547"
+[ "$got" = "$want" ] || fail "laplace_centroid.sh printed '$got', expected '$want'"
 echo "scripts_test: all scripts ran"
