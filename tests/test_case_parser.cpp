@@ -41,6 +41,7 @@ hydrostatic_initial_density = false
 vres_conserve_momentum = true
 vres_buffer_fill_min = 0.3
 vres_buffer_surface = "donor"
+vres_shepard_fill = 0.9
 [[fluid_block]]
 shape = "circle"
 center = [0.001, -0.0005]
@@ -212,7 +213,13 @@ TEST(CaseParser, RoundTripEveryKey) {
   EXPECT_TRUE(s.numerics.surface_tension.curvature_correction);
   EXPECT_TRUE(s.vres_conserve_momentum);
   EXPECT_EQ(s.vres_buffer_fill_min, 0.3);
+}
+
+// The vres_ keys of the every-key case (their round trip is in RoundTripEveryKey).
+TEST(CaseParser, EveryKeyCaseSetsTheVresKeys) {
+  const CaseSpec s = parse_text(kEveryKey);
   EXPECT_EQ(s.vres_buffer_surface, BufferSurface::donor);
+  EXPECT_EQ(s.vres_shepard_fill, 0.9);
 }
 
 // buffer_rounding is per box, "none" where not given.

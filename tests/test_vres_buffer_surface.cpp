@@ -17,14 +17,15 @@ namespace {
 using test::load_case;
 
 struct BufferLambda {
-  double lowest = 1.0;   // lowest lambda of the interior buffer particles (r < 1.2 mm)
+  double lowest = 1.0;       // lowest lambda of the interior buffer particles (r < 1.2 mm)
   double largest_dev = 0.0;  // largest |lambda - 1| among them
   std::size_t count = 0;
 };
 
 BufferLambda interior_buffer_lambda(const std::string& mode) {
-  CaseSpec spec = load_case("droplet_vr_2d.toml",
-                            {"resolution.dp=2e-4", "numerics.vres_buffer_surface=\"" + mode + "\""});
+  CaseSpec spec =
+      load_case("droplet_vr_2d.toml",
+                {"resolution.dp=2e-4", "numerics.vres_buffer_surface=\"" + mode + "\""});
   Simulation<2> sim(spec);
   sim.update_surface_fields();
   BufferLambda out;
@@ -44,9 +45,9 @@ BufferLambda interior_buffer_lambda(const std::string& mode) {
 }
 
 // Inside the drop there is no free surface. With "own" the buffer particles at the outer edge of
-// their shell sum over a support cut by the shell's edge, so their lambda falls far below 1 (measured 0.487: a
-// surface that is not there); "edge" and "donor" replace it with the other level's value, which
-// is about 1 at every interior point.
+// their shell sum over a support cut by the shell's edge, so their lambda falls far below 1
+// (measured 0.487: a surface that is not there); "edge" and "donor" replace it with the other
+// level's value, which is about 1 at every interior point.
 TEST(VresBufferSurface, OwnSumsSeeTheShellEdgeAndTheExchangeRemovesIt) {
   const BufferLambda own = interior_buffer_lambda("own");
   const BufferLambda edge = interior_buffer_lambda("edge");
@@ -55,12 +56,13 @@ TEST(VresBufferSurface, OwnSumsSeeTheShellEdgeAndTheExchangeRemovesIt) {
   EXPECT_EQ(own.count, edge.count);
   EXPECT_EQ(own.count, donor.count);
   EXPECT_LT(own.lowest, 0.8);
-  EXPECT_GT(edge.lowest, 0.85);  // measured 0.905
+  EXPECT_GT(edge.lowest, 0.85);   // measured 0.905
   EXPECT_GT(donor.lowest, 0.85);  // measured 0.974
   EXPECT_LE(donor.largest_dev, edge.largest_dev + 1e-12);
 }
 
-TEST(VresBufferSurface, KeyIsCheckedAndWrittenBack) {
+// Also numerics.vres_shepard_fill (vres/interpolation.hpp), checked here with its neighbour key.
+TEST(VresBufferSurface, KeysAreCheckedAndWrittenBack) {
   using namespace case_fixtures;
   expect_contains(error_of(std::string(kMinimal) + "[numerics]\nvres_buffer_surface = \"all\"\n"),
                   {"numerics.vres_buffer_surface", "all", "own"});
@@ -69,7 +71,10 @@ TEST(VresBufferSurface, KeyIsCheckedAndWrittenBack) {
   EXPECT_EQ(s.vres_buffer_surface, BufferSurface::own);
   const CaseSpec back = parse_case(toml::parse(case_to_toml(s)), "back");
   EXPECT_EQ(back.vres_buffer_surface, BufferSurface::own);
+  expect_contains(error_of(std::string(kMinimal) + "[numerics]\nvres_shepard_fill = 3\n"),
+                  {"numerics.vres_shepard_fill = 3", "[0, 2]"});
   const CaseSpec dflt = parse_case(toml::parse(std::string(kMinimal)), "default");
+  EXPECT_EQ(dflt.vres_shepard_fill, 0.0);
   EXPECT_EQ(dflt.vres_buffer_surface, BufferSurface::edge);
 }
 

@@ -222,6 +222,35 @@ TEST(VresInterp, BufferAndWallDonorsIgnored) {
   }
 }
 
+// numerics.vres_shepard_fill: below that donor fill the value is the Shepard average (not first
+// order, so a linear field is no longer exact), above it the first-order value is kept. In the
+// bulk the fill is about 1; 0.3 dp inside a face it is about 0.6.
+TEST(VresInterp, ShepardBelowAGivenFill) {
+  const int n = 12;
+  const Donors<2> d = make_donors<2>(lattice<2>(n, 0.25), n);
+  const Vec<2> bulk = point<2>(6.3, 5.8), face = point<2>(0.3, 6.1);
+  auto with = [&](const Vec<2>& x, double fill) {
+    return interpolate_from_level(x, d.ps, d.grid, d.kernel, kVresCondLimit, 1.0, fill);
+  };
+  const auto face_fo = with(face, 0.0), face_sh = with(face, 0.9), face_all = with(face, 2.0);
+  const auto bulk_fo = with(bulk, 0.0), bulk_sh = with(bulk, 0.9), bulk_all = with(bulk, 2.0);
+  std::printf(
+      "[ vres shepard_fill ] fill bulk %.3f face %.3f; error at the face: first order "
+      "%.2e, Shepard %.2e\n",
+      donor_fill(bulk_fo), donor_fill(face_fo), rel_error(face_fo, face), rel_error(face_sh, face));
+  ASSERT_GT(donor_fill(bulk_fo), 0.9);
+  ASSERT_LT(donor_fill(face_fo), 0.9);
+  EXPECT_TRUE(face_fo.corrected);
+  EXPECT_LT(rel_error(face_fo, face), 1e-9);
+  EXPECT_FALSE(face_sh.corrected);  // Shepard: sum V f W / sum V W, visibly off a linear field
+  EXPECT_GT(rel_error(face_sh, face), 1e-3);
+  EXPECT_EQ(face_sh.rho, face_all.rho);
+  EXPECT_TRUE(bulk_sh.corrected);  // above the fill: unchanged
+  EXPECT_EQ(bulk_sh.rho, bulk_fo.rho);
+  EXPECT_EQ(bulk_sh.vel[1], bulk_fo.vel[1]);
+  EXPECT_FALSE(bulk_all.corrected);
+}
+
 template <int D>
 void check_div_r(int n) {
   const Donors<D> d = make_donors<D>(lattice<D>(n, 0.0), n, true);

@@ -170,6 +170,8 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
       r.opt_number("vres_buffer_ramp", kBufferRamp).value_or(spec.vres_buffer_ramp);
   spec.vres_surface_across_levels =
       r.opt_bool("vres_surface_across_levels").value_or(spec.vres_surface_across_levels);
+  spec.vres_shepard_fill =
+      r.opt_number("vres_shepard_fill", kShepardFill).value_or(spec.vres_shepard_fill);
   spec.vres_buffer_surface =
       r.opt_enum("vres_buffer_surface", kBufferSurfaceNames).value_or(spec.vres_buffer_surface);
   n.hydrostatic_initial_density =

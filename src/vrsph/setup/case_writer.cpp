@@ -136,6 +136,9 @@ void write_numerics(Writer& w, const CaseSpec& s) {
          "dp over which buffer volumes ramp to 0 at the shell's outer edge");
   if (s.vres_surface_across_levels)  // written only when on, as the ramp
     w.kv("vres_surface_across_levels", "true", "surface fields over the fluid of both levels");
+  if (s.vres_shepard_fill > 0.0)  // written only when on
+    w.kv("vres_shepard_fill", num(s.vres_shepard_fill),
+         "donor fill below which buffer values are Shepard averages");
   if (s.vres_buffer_surface != BufferSurface::edge)  // written only when not the default
     w.kv("vres_buffer_surface", toml_quote(enum_name(kBufferSurfaceNames, s.vres_buffer_surface)),
          "buffers' lambda and normal: own | edge | donor");

@@ -41,7 +41,8 @@ bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t fi
 template <int D>
 void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
                                  double dt, const std::vector<double>& donor_a, double entry,
-                                 std::uint64_t& next_id, CouplingTally& tally) {
+                                 double shepard_fill, std::uint64_t& next_id,
+                                 CouplingTally& tally) {
   if (dt <= 0.0) return;
   Level<D>& L = levels[l];
   std::vector<MassPoint<D>>& points = link.mass_points;
@@ -52,7 +53,7 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
     const auto d = static_cast<std::size_t>(P.donor);
     const Level<D>& donor = levels[d];
     st[static_cast<std::size_t>(q)] = interpolate_from_level<D>(
-        P.x, donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit, donor_a[d]);
+        P.x, donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit, donor_a[d], shepard_fill);
   });
   const std::size_t first_new = L.ps.size();
   for (std::size_t q = 0; q < points.size(); ++q) {
@@ -81,10 +82,11 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
 
 template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
-                           double dt, double entry, std::uint64_t& next_id, CouplingTally& tally) {
+                           double dt, double entry, double shepard_fill, std::uint64_t& next_id,
+                           CouplingTally& tally) {
   const std::vector<double> now(levels.size(), 1.0);
   for (std::size_t l = 0; l < levels.size(); ++l)
-    accumulate_and_create_level(levels, links[l], l, dt, now, entry, next_id, tally);
+    accumulate_and_create_level(levels, links[l], l, dt, now, entry, shepard_fill, next_id, tally);
 }
 
 template <int D>
@@ -119,7 +121,7 @@ namespace {
 // Buffer values of level l from its donors (keep[i] = 0: delete particle i).
 template <int D>
 void buffer_values(std::vector<Level<D>>& levels, const LevelLink<D>& link, std::size_t l,
-                   double fill_min, const std::vector<double>& donor_a,
+                   const DonorRule& rule, const std::vector<double>& donor_a,
                    std::vector<std::uint8_t>& keep) {
   ParticleSet<D>& ps = levels[l].ps;
   keep.assign(ps.size(), 1);
@@ -129,8 +131,9 @@ void buffer_values(std::vector<Level<D>>& levels, const LevelLink<D>& link, std:
     const ZoneInfo<D> z = link.region.classify(ps.pos[i]);
     const auto d = static_cast<std::size_t>(z.donor);
     const Level<D>& donor = levels[d];
-    const InterpolatedState<D> s = interpolate_from_level<D>(
-        ps.pos[i], donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit, donor_a[d]);
+    const InterpolatedState<D> s =
+        interpolate_from_level<D>(ps.pos[i], donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit,
+                                  donor_a[d], rule.shepard_fill);
     // No donor fluid in reach, or (numerics.vres_buffer_fill_min > 0, not part of Ricci et
     // al.) outside the donor's free surface. Buffer particles follow the donor's velocity and
     // nothing pulls them back to its surface: without the second test, those carried beyond
@@ -138,7 +141,7 @@ void buffer_values(std::vector<Level<D>>& levels, const LevelLink<D>& link, std:
     // which lowers the drop's pressure (2D VR droplet; docs/validation.md, "Figures formerly
     // in code comments"). On the relaxing square drop the same test dented the top crossing
     // instead.
-    if (s.shepard < kVresShepardMin || donor_fill(s) < fill_min) {
+    if (s.shepard < kVresShepardMin || donor_fill(s) < rule.fill_min) {
       keep[i] = 0;
       return;
     }
@@ -168,10 +171,10 @@ std::size_t remove_unkept(Level<D>& L, const std::vector<std::uint8_t>& keep,
 
 template <int D>
 std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const LevelLink<D>& link,
-                                      std::size_t l, CouplingTally& tally, double fill_min,
+                                      std::size_t l, CouplingTally& tally, const DonorRule& rule,
                                       const std::vector<double>& donor_a) {
   std::vector<std::uint8_t> keep;
-  buffer_values(levels, link, l, fill_min, donor_a, keep);
+  buffer_values(levels, link, l, rule, donor_a, keep);
   return remove_unkept(levels[l], keep, tally);
 }
 
@@ -180,11 +183,11 @@ std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const Level
 template <int D>
 std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
                                 const std::vector<LevelLink<D>>& links, CouplingTally& tally,
-                                double fill_min) {
+                                const DonorRule& rule) {
   const std::vector<double> now(levels.size(), 1.0);
   std::vector<std::vector<std::uint8_t>> keep(levels.size());
   for (std::size_t l = 0; l < levels.size(); ++l)
-    buffer_values(levels, links[l], l, fill_min, now, keep[l]);
+    buffer_values(levels, links[l], l, rule, now, keep[l]);
   std::size_t removed_all = 0;
   for (std::size_t l = 0; l < levels.size(); ++l)
     removed_all += remove_unkept(levels[l], keep[l], tally);
@@ -192,28 +195,28 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
 }
 
 template void accumulate_and_create<2>(std::vector<Level<2>>&, std::vector<LevelLink<2>>&, double,
-                                       double, std::uint64_t&, CouplingTally&);
+                                       double, double, std::uint64_t&, CouplingTally&);
 template void accumulate_and_create<3>(std::vector<Level<3>>&, std::vector<LevelLink<3>>&, double,
-                                       double, std::uint64_t&, CouplingTally&);
+                                       double, double, std::uint64_t&, CouplingTally&);
 template void accumulate_and_create_level<2>(std::vector<Level<2>>&, LevelLink<2>&, std::size_t,
-                                             double, const std::vector<double>&, double,
+                                             double, const std::vector<double>&, double, double,
                                              std::uint64_t&, CouplingTally&);
 template void accumulate_and_create_level<3>(std::vector<Level<3>>&, LevelLink<3>&, std::size_t,
-                                             double, const std::vector<double>&, double,
+                                             double, const std::vector<double>&, double, double,
                                              std::uint64_t&, CouplingTally&);
 template std::size_t interpolate_buffers_level<2>(std::vector<Level<2>>&, const LevelLink<2>&,
-                                                  std::size_t, CouplingTally&, double,
+                                                  std::size_t, CouplingTally&, const DonorRule&,
                                                   const std::vector<double>&);
 template std::size_t interpolate_buffers_level<3>(std::vector<Level<3>>&, const LevelLink<3>&,
-                                                  std::size_t, CouplingTally&, double,
+                                                  std::size_t, CouplingTally&, const DonorRule&,
                                                   const std::vector<double>&);
 template void update_kinds<2>(Level<2>&, const LevelLink<2>&, CouplingTally&);
 template void update_kinds<3>(Level<3>&, const LevelLink<3>&, CouplingTally&);
 template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&,
                                             const std::vector<LevelLink<2>>&, CouplingTally&,
-                                            double);
+                                            const DonorRule&);
 template std::size_t interpolate_buffers<3>(std::vector<Level<3>>&,
                                             const std::vector<LevelLink<3>>&, CouplingTally&,
-                                            double);
+                                            const DonorRule&);
 
 }  // namespace vrsph

@@ -29,6 +29,13 @@ struct LevelLink {
   std::vector<MassPoint<D>> mass_points;  // where particles of this level are created
 };
 
+// How buffer values and mass fluxes are read from the donor level (numerics.vres_buffer_fill_min,
+// numerics.vres_shepard_fill; both 0, off, by default).
+struct DonorRule {
+  double fill_min = 0.0;      // buffer particles below this donor fill are deleted
+  double shepard_fill = 0.0;  // below this donor fill, the Shepard average (interpolation.hpp)
+};
+
 struct CouplingTally {
   std::uint64_t created = 0;
   std::uint64_t deleted = 0;
@@ -40,7 +47,8 @@ struct CouplingTally {
 // ids from next_id.
 template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
-                           double dt, double entry, std::uint64_t& next_id, CouplingTally& tally);
+                           double dt, double entry, double shepard_fill, std::uint64_t& next_id,
+                           CouplingTally& tally);
 
 // Step 1 for level l alone, each donor level d read at the fraction donor_a[d] of its last step
 // (interpolate_from_level; 1: its current state). Local time stepping calls it at the end of
@@ -48,7 +56,7 @@ void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<
 template <int D>
 void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
                                  double dt, const std::vector<double>& donor_a, double entry,
-                                 std::uint64_t& next_id, CouplingTally& tally);
+                                 double shepard_fill, std::uint64_t& next_id, CouplingTally& tally);
 
 // Step 2 for one level (particles are compacted; the level must be re-sorted afterwards).
 template <int D>
@@ -59,12 +67,12 @@ void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally);
 template <int D>
 std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
                                 const std::vector<LevelLink<D>>& links, CouplingTally& tally,
-                                double fill_min);
+                                const DonorRule& rule);
 
 // Step 3 for level l alone, donors as in accumulate_and_create_level. Returns the number deleted.
 template <int D>
 std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const LevelLink<D>& link,
-                                      std::size_t l, CouplingTally& tally, double fill_min,
+                                      std::size_t l, CouplingTally& tally, const DonorRule& rule,
                                       const std::vector<double>& donor_a);
 
 }  // namespace vrsph

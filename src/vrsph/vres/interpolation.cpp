@@ -54,7 +54,7 @@ inline DonorAt<D> donor_at(const ParticleSet<D>& ps, std::uint32_t j, double a) 
 template <int D>
 InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donors,
                                     const CellGrid<D>& grid, const WendlandC2<D>& kernel,
-                                    double cond_limit, double a) {
+                                    double cond_limit, double a, double shepard_fill) {
   InterpolatedState<D> out;
   std::int64_t c = 0;
   if (donors.size() == 0 || !grid.stencil_cell(x, c)) return out;
@@ -86,7 +86,7 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
   if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
   const SmallLu<D + 1> lu(s.a);
   out.cond = lu.cond_inf();
-  if (out.cond <= cond_limit) {
+  if (out.cond <= cond_limit && !(donor_fill(out) < shepard_fill)) {
     out.rho = lu.solve(s.rhs[0])[0];
     for (int k = 0; k < D; ++k) out.vel[k] = lu.solve(s.rhs[k + 1])[0];
     out.corrected = std::isfinite(out.rho) && std::isfinite(norm2(out.vel));
@@ -104,8 +104,8 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
 template <int D>
 InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D>& donors,
                                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
-                                            double cond_limit, double a) {
-  return interpolate_at(x, donors, grid, kernel, cond_limit, a);
+                                            double cond_limit, double a, double shepard_fill) {
+  return interpolate_at(x, donors, grid, kernel, cond_limit, a, shepard_fill);
 }
 
 template <int D, class T>
@@ -134,16 +134,16 @@ void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet
                             std::vector<InterpolatedState<D>>& out, double cond_limit) {
   out.resize(points.size());
   exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t i) {
-    out[i] = interpolate_at(points[i], donors, grid, kernel, cond_limit, 1.0);
+    out[i] = interpolate_at(points[i], donors, grid, kernel, cond_limit, 1.0, 0.0);
   });
 }
 
 template InterpolatedState<2> interpolate_from_level(const Vec<2>&, const ParticleSet<2>&,
                                                      const CellGrid<2>&, const WendlandC2<2>&,
-                                                     double, double);
+                                                     double, double, double);
 template InterpolatedState<3> interpolate_from_level(const Vec<3>&, const ParticleSet<3>&,
                                                      const CellGrid<3>&, const WendlandC2<3>&,
-                                                     double, double);
+                                                     double, double, double);
 template void interpolate_from_level(const std::vector<Vec<2>>&, const ParticleSet<2>&,
                                      const CellGrid<2>&, const WendlandC2<2>&,
                                      std::vector<InterpolatedState<2>>&, double);

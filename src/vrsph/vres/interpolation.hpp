@@ -89,9 +89,12 @@ inline double donor_fill(const InterpolatedState<D>& s) {
 // of h in one step, so the only ones missed sit at the edge of the support, where W vanishes
 // to fourth order.
 template <int D>
+// shepard_fill (numerics.vres_shepard_fill; not part of Ricci et al. 2024): where the donor's
+// fill (donor_fill) is below it, the Shepard average instead of the first-order values (0: never).
 InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D>& donors,
                                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
-                                            double cond_limit = kVresCondLimit, double a = 1.0);
+                                            double cond_limit = kVresCondLimit, double a = 1.0,
+                                            double shepard_fill = 0.0);
 
 // The same for many points, in parallel (OpenMP, static schedule): out[i] for points[i]. out is
 // resized to points.size() (no allocation once it is large enough).

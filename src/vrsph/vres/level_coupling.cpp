@@ -191,10 +191,10 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  accumulate_and_create(levels, links_, dt, entry_depth(), next_id, tally);
+  accumulate_and_create(levels, links_, dt, entry_depth(), opt_.shepard_fill, next_id, tally);
   for (std::size_t l = 0; l < levels.size(); ++l) update_kinds(levels[l], links_[l], tally);
   sort();
-  if (interpolate_buffers(levels, links_, tally, opt_.buffer_fill_min) > 0) sort();
+  if (interpolate_buffers(levels, links_, tally, donor_rule()) > 0) sort();
   if (opt_.conserve_momentum) {
     const Vec<D> dp = fluid_momentum(levels, mass) - p_before;
     if (mass > 0.0) add_to_fluid(levels, dp * (-1.0 / mass), true);
@@ -232,11 +232,11 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  accumulate_and_create_level(levels, links_[l], l, dt, donor_a, entry_depth(), next_id, tally);
+  accumulate_and_create_level(levels, links_[l], l, dt, donor_a, entry_depth(), opt_.shepard_fill,
+                              next_id, tally);
   update_kinds(levels[l], links_[l], tally);
   sort();
-  if (interpolate_buffers_level(levels, links_[l], l, tally, opt_.buffer_fill_min, donor_a) > 0)
-    sort();
+  if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donor_a) > 0) sort();
   if (opt_.conserve_momentum) remove_impulse(levels, fluid_momentum(levels, mass) - p_before);
   return tally;
 }

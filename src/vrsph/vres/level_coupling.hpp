@@ -25,6 +25,7 @@ struct CouplingOptions {
   double buffer_ramp = 0.0;             // numerics.vres_buffer_ramp, in dp of each level
   bool surface_across_levels = false;   // numerics.vres_surface_across_levels
   BufferSurface buffer_surface = BufferSurface::edge;  // numerics.vres_buffer_surface
+  double shepard_fill = 0.0;                           // numerics.vres_shepard_fill
 };
 
 template <int D>
@@ -93,6 +94,7 @@ class LevelCoupling {
   void cross_sources(std::vector<Level<D>>& levels, std::size_t l) const;
   // Where a created particle is placed, in dp inside the buffer's outer face: 0.5 (Ricci et al.),
   // or, with the volume ramp, just inside the face, where its weight starts from about 0.
+  DonorRule donor_rule() const { return {opt_.buffer_fill_min, opt_.shepard_fill}; }
   double entry_depth() const { return opt_.buffer_ramp > 0.0 ? kRampEntryDepth : 0.5; }
   static constexpr double kRampEntryDepth = 0.01;
   template <class T>
