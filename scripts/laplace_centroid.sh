@@ -8,13 +8,15 @@
 #   - the strip: fluid particles within dp/2 of that segment (dp of each particle's level);
 #   - interior: samples at least 2h from both ends of the strip's samples (h of the end's level);
 #   - rmse and mean over the interior samples against analysis.laplace_pressure.
-#   scripts/laplace_centroid.sh OUT_DIR T0 T1
+#   scripts/laplace_centroid.sh OUT_DIR T0 T1 [P_EXPECTED]
+# P_EXPECTED (Pa) replaces analysis.laplace_pressure (for example sigma / R_eff, R_eff from the
+# drop's area).
 # Needs csv snapshots (output.formats with "csv"). Prints one line per snapshot with T0 <= t <= T1
 # ("t cx cy n mean rmse") and the window means of mean and rmse.
 set -euo pipefail
 
 die() { echo "laplace_centroid.sh: $*" >&2; exit 1; }
-[ $# -eq 3 ] || { echo "usage: laplace_centroid.sh OUT_DIR T0 T1" >&2; exit 2; }
+[ $# -eq 3 ] || [ $# -eq 4 ] || { echo "usage: laplace_centroid.sh OUT_DIR T0 T1 [P_EXPECTED]" >&2; exit 2; }
 dir="${1%/}"
 case_file="$dir/case.toml"
 [ -f "$case_file" ] || die "$case_file: no such file (not a run folder?)"
@@ -32,6 +34,7 @@ read -r dp hdp ratio expected fx fy tx ty < <(awk '
   sec == "[[output.line]]" && /^from[ \t]*=/ && fx == "" { pair($0, a); fx = a[1]; fy = a[2] }
   sec == "[[output.line]]" && /^to[ \t]*=/ && tx == "" { pair($0, a); tx = a[1]; ty = a[2] }
   END { if (ratio == "") ratio = 1; print dp, hdp, ratio, p, fx, fy, tx, ty }' "$case_file")
+[ $# -eq 4 ] && expected="$4"
 [ -n "$ty" ] || die "$case_file: needs resolution.dp, analysis.laplace_pressure and an [[output.line]]"
 
 # Snapshot times from series.csv (row k is snapshot k).
