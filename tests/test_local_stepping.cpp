@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "case_util.hpp"
+#include "vres_fixtures.hpp"
 #include "vrsph/setup/case_parser.hpp"
 #include "vrsph/sim/simulation.hpp"
 
@@ -28,36 +29,7 @@ double fluid_mass(const Simulation<2>& sim) {
 
 // A block at U = 1 m/s, no gravity, through the face x = 0 of a box at dp / 2 (test_vres.cpp).
 CaseSpec flux_case(bool local, double end_time) {
-  CaseSpec spec = parse_case(toml::parse(R"(
-[case]
-name = "flux"
-dimension = 2
-end_time = 0.1
-[fluid]
-kinematic_viscosity = 1.0e-4
-gravity = [0.0, 0.0]
-[eos]
-max_speed = 1.0
-[resolution]
-dp = 0.01
-[numerics]
-viscosity = { model = "laminar" }
-density_diffusion = { model = "molteni", delta = 0.1 }
-[[fluid_block]]
-shape = "box"
-min = [-0.6, 0.0]
-max = [0.3, 0.39]
-velocity = [1.0, 0.0]
-[domain]
-min = [-1.0, -0.5]
-max = [1.5, 0.9]
-[[refinement]]
-min = [0.0, -0.3]
-max = [0.8, 0.7]
-[output]
-interval = 0.1
-)"),
-                             "flux");
+  CaseSpec spec = parse_case(toml::parse(test::kUniformFlowThroughAFace), "flux");
   spec.numerics.local_time_stepping = local;
   spec.end_time = end_time;
   return spec;

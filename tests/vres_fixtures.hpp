@@ -4,7 +4,8 @@
 namespace vrsph::test {
 
 // A block moving at U = 1 m/s with no gravity through the face x = 0 of a refinement box
-// (VresFlux.CreatedMassMatchesFlux, VresRamp.FlowThroughAnInterfaceKeepsItsMass).
+// (VresFlux.CreatedMassMatchesFlux, VresRamp.FlowThroughAnInterfaceKeepsItsMass and the
+// local-stepping flux tests).
 inline constexpr const char* kUniformFlowThroughAFace = R"(
 [case]
 name = "flux"

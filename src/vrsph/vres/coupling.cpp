@@ -41,7 +41,7 @@ bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t fi
 template <int D>
 void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
                                  double dt, const std::vector<double>& donor_a, double entry,
-                                 double shepard_fill, std::uint64_t& next_id,
+                                 const DonorRule& rule, std::uint64_t& next_id,
                                  CouplingTally& tally) {
   if (dt <= 0.0) return;
   Level<D>& L = levels[l];
@@ -53,7 +53,7 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
     const auto d = static_cast<std::size_t>(P.donor);
     const Level<D>& donor = levels[d];
     st[static_cast<std::size_t>(q)] = interpolate_from_level<D>(
-        P.x, donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit, donor_a[d], shepard_fill);
+        P.x, donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit, donor_a[d], rule.shepard_fill);
   });
   const std::size_t first_new = L.ps.size();
   for (std::size_t q = 0; q < points.size(); ++q) {
@@ -82,11 +82,11 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
 
 template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
-                           double dt, double entry, double shepard_fill, std::uint64_t& next_id,
+                           double dt, double entry, const DonorRule& rule, std::uint64_t& next_id,
                            CouplingTally& tally) {
   const std::vector<double> now(levels.size(), 1.0);
   for (std::size_t l = 0; l < levels.size(); ++l)
-    accumulate_and_create_level(levels, links[l], l, dt, now, entry, shepard_fill, next_id, tally);
+    accumulate_and_create_level(levels, links[l], l, dt, now, entry, rule, next_id, tally);
 }
 
 template <int D>
@@ -195,15 +195,15 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
 }
 
 template void accumulate_and_create<2>(std::vector<Level<2>>&, std::vector<LevelLink<2>>&, double,
-                                       double, double, std::uint64_t&, CouplingTally&);
+                                       double, const DonorRule&, std::uint64_t&, CouplingTally&);
 template void accumulate_and_create<3>(std::vector<Level<3>>&, std::vector<LevelLink<3>>&, double,
-                                       double, double, std::uint64_t&, CouplingTally&);
+                                       double, const DonorRule&, std::uint64_t&, CouplingTally&);
 template void accumulate_and_create_level<2>(std::vector<Level<2>>&, LevelLink<2>&, std::size_t,
-                                             double, const std::vector<double>&, double, double,
-                                             std::uint64_t&, CouplingTally&);
+                                             double, const std::vector<double>&, double,
+                                             const DonorRule&, std::uint64_t&, CouplingTally&);
 template void accumulate_and_create_level<3>(std::vector<Level<3>>&, LevelLink<3>&, std::size_t,
-                                             double, const std::vector<double>&, double, double,
-                                             std::uint64_t&, CouplingTally&);
+                                             double, const std::vector<double>&, double,
+                                             const DonorRule&, std::uint64_t&, CouplingTally&);
 template std::size_t interpolate_buffers_level<2>(std::vector<Level<2>>&, const LevelLink<2>&,
                                                   std::size_t, CouplingTally&, const DonorRule&,
                                                   const std::vector<double>&);

@@ -47,7 +47,7 @@ struct CouplingTally {
 // ids from next_id.
 template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
-                           double dt, double entry, double shepard_fill, std::uint64_t& next_id,
+                           double dt, double entry, const DonorRule& rule, std::uint64_t& next_id,
                            CouplingTally& tally);
 
 // Step 1 for level l alone, each donor level d read at the fraction donor_a[d] of its last step
@@ -56,7 +56,8 @@ void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<
 template <int D>
 void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
                                  double dt, const std::vector<double>& donor_a, double entry,
-                                 double shepard_fill, std::uint64_t& next_id, CouplingTally& tally);
+                                 const DonorRule& rule, std::uint64_t& next_id,
+                                 CouplingTally& tally);
 
 // Step 2 for one level (particles are compacted; the level must be re-sorted afterwards).
 template <int D>

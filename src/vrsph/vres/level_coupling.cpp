@@ -191,7 +191,7 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  accumulate_and_create(levels, links_, dt, entry_depth(), opt_.shepard_fill, next_id, tally);
+  accumulate_and_create(levels, links_, dt, entry_depth(), donor_rule(), next_id, tally);
   for (std::size_t l = 0; l < levels.size(); ++l) update_kinds(levels[l], links_[l], tally);
   sort();
   if (interpolate_buffers(levels, links_, tally, donor_rule()) > 0) sort();
@@ -232,7 +232,7 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  accumulate_and_create_level(levels, links_[l], l, dt, donor_a, entry_depth(), opt_.shepard_fill,
+  accumulate_and_create_level(levels, links_[l], l, dt, donor_a, entry_depth(), donor_rule(),
                               next_id, tally);
   update_kinds(levels[l], links_[l], tally);
   sort();

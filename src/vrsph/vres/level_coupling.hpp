@@ -92,9 +92,10 @@ class LevelCoupling {
  private:
   void volume_weights(std::vector<Level<D>>& levels, std::size_t l) const;
   void cross_sources(std::vector<Level<D>>& levels, std::size_t l) const;
+  // How buffer values and mass fluxes are read from the donor (coupling.hpp).
+  DonorRule donor_rule() const { return {opt_.buffer_fill_min, opt_.shepard_fill}; }
   // Where a created particle is placed, in dp inside the buffer's outer face: 0.5 (Ricci et al.),
   // or, with the volume ramp, just inside the face, where its weight starts from about 0.
-  DonorRule donor_rule() const { return {opt_.buffer_fill_min, opt_.shepard_fill}; }
   double entry_depth() const { return opt_.buffer_ramp > 0.0 ? kRampEntryDepth : 0.5; }
   static constexpr double kRampEntryDepth = 0.01;
   template <class T>
