@@ -233,7 +233,8 @@ TEST(ShiftingDisplacement, SkillenScalesWithSpeedTimesDt) {
 // To t = 2 ms: the lattice start's speed peaks (about 0.19 m/s) come at 0.5 and 2 ms.
 void run_droplet(const std::vector<std::string>& extra, const char* label, ShiftingModel model,
                  double coefficient) {
-  std::vector<std::string> sets = {"resolution.dp=1e-4", "case.end_time=0.002"};
+  std::vector<std::string> sets =
+      test::droplet_lattice_cen_alone({"resolution.dp=1e-4", "case.end_time=0.002"});
   sets.insert(sets.end(), extra.begin(), extra.end());
   CaseSpec spec = test::load_case("droplet_2d.toml", sets);
   Simulation<2> sim(spec);

@@ -141,7 +141,9 @@ double interior_pressure(Simulation<2>& sim, double R) {
 TEST(SurfaceTensionDroplet, InteriorPressureHeadsToLaplace) {
   const double R = 0.002, laplace = kSigma / R;  // 36.4 Pa
   const double end = 0.01;
-  CaseSpec spec = test::load_case("droplet_2d.toml", {"resolution.dp=1e-4", "case.end_time=0.01"});
+  CaseSpec spec = test::load_case(
+      "droplet_2d.toml",
+      test::droplet_lattice_cen_alone({"resolution.dp=1e-4", "case.end_time=0.01"}));
   Simulation<2> sim(spec);
   double p_1ms = 0.0;
   bool at_1ms = false;
