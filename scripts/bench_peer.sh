@@ -4,16 +4,21 @@
 # prints each code's median particle-steps per second, the median of the per-round ratios, and
 # peak memory per particle (peak resident set from /usr/bin/time, and what each code reports).
 #
-#   scripts/bench_peer.sh --ds BIN --ds-cases DIR [--vrsph BIN] [--threads N] [--runs N]
-#                         [--cases 2d,3d] [--time T] [--set KEY=VALUE]... [--out DIR]
+#   scripts/bench_peer.sh --ds BIN [--ds-cases DIR] [--vrsph BIN] [--threads N] [--runs N]
+#                         [--cases 2d,3d,3d_400k] [--time T] [--set KEY=VALUE]... [--out DIR]
 #
 #   --ds BIN        a DualSPHysics 5.x CPU binary (not shipped with vrsph)
 #   --ds-cases DIR  GenCase outputs Dam2D.xml/.bi4 and Spheric3D.xml/.bi4, made from the
-#                   definitions in bench/peer/ (GenCase bench/peer/Dam2D_Def DIR/Dam2D)
+#                   definitions in bench/peer/ (GenCase bench/peer/Dam2D_Def DIR/Dam2D).
+#                   Without it, each peer case is written from vrsph's own particles at t = 0
+#                   by scripts/peer_case.py (the same particles in both codes; no GenCase)
 #   --vrsph BIN     the vrsph binary (default build/release/vrsph)
 #   --threads N     threads for both codes (default 2)
 #   --runs N        rounds, at least 3 for a claim (default 3)
-#   --cases LIST    which cases (default 2d,3d)
+#   --cases LIST    which cases (default 2d,3d): 2d = cases/bench_dam_break_2d.toml (85,415
+#                   particles), 3d = cases/bench_dam_break_3d.toml (116,184), 3d_400k = the
+#                   same 3D case at dp 0.015 m (397,993; its peer case is always written from
+#                   vrsph's particles unless DIR holds Spheric3D_400k.xml/.bi4)
 #   --time T        physical time of every run (default: 0.05 s in 2D, 0.02 s in 3D)
 #   --set KEY=VALUE a case override for the vrsph runs (numerics.precision="mixed")
 #   --out DIR       working directory (default a fresh one under /tmp), kept for inspection
@@ -38,14 +43,13 @@ while [ $# -gt 0 ]; do
     --time) time=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --set) sets+=(--set "$2"); shift 2 ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,29p' "$0"; exit 0 ;;
     *) echo "bench_peer.sh: unknown option '$1' (see --help)" >&2; exit 1 ;;
   esac
 done
 fail() { echo "bench_peer.sh: $*" >&2; exit 1; }
 [ -n "$ds" ] || fail "--ds BIN is required (a DualSPHysics CPU binary)"
 [ -x "$ds" ] || fail "--ds '$ds': not an executable file"
-[ -n "$ds_cases" ] || fail "--ds-cases DIR is required (GenCase outputs of bench/peer/*_Def.xml)"
 [ -x "$vrsph" ] || fail "--vrsph '$vrsph': not an executable file (build first)"
 [ -x /usr/bin/time ] || fail "/usr/bin/time is missing (Debian package 'time')"
 case "$runs" in ''|*[!0-9]*) fail "--runs '$runs': not a positive integer" ;; esac
@@ -56,24 +60,24 @@ mkdir -p "$out"
 median() { sort -g | awk '{a[NR]=$1} END {if (NR==0) {print "nan"; exit}
   print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 
-# run_vrsph CASE T TAG -> "particle_steps_per_second peak_kib bytes_per_particle"
+# run_vrsph CASE T TAG [SET...] -> "particle_steps_per_second peak_kib bytes_per_particle"
 run_vrsph() {
-  local json="$out/$3.json"
-  /usr/bin/time -f %M -o "$out/$3.mem" "$vrsph" bench "$1" --time "$2" --threads "$threads" \
-    "${sets[@]}" --json "$json" > "$out/$3.log" 2>&1 || fail "vrsph failed on $1 (log: $out/$3.log)"
-  python3 - "$json" "$(cat "$out/$3.mem")" <<'PY'
+  local json="$out/$3.json" c=$1 t=$2 tag=$3; shift 3
+  /usr/bin/time -f %M -o "$out/$tag.mem" "$vrsph" bench "$c" --time "$t" --threads "$threads" \
+    "$@" "${sets[@]}" --json "$json" > "$out/$tag.log" 2>&1 || fail "vrsph failed on $c (log: $out/$tag.log)"
+  python3 - "$json" "$(cat "$out/$tag.mem")" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
 print(j["particle_steps_per_second"], sys.argv[2], j["bytes_per_particle"])
 PY
 }
 
-# run_ds NAME T TAG -> "particle_steps_per_second peak_kib np"
+# run_ds CASE_PREFIX T TAG -> "particle_steps_per_second peak_kib np"
 run_ds() {
   local dir="$out/$3"
   rm -rf "$dir"
   OMP_NUM_THREADS=$threads /usr/bin/time -f %M -o "$out/$3.mem" "$ds" -cpu \
-    -ompthreads:"$threads" "$ds_cases/$1" "$dir" -symplectic -ddt:3 -cellmode:half -sv:none \
+    -ompthreads:"$threads" "$1" "$dir" -symplectic -ddt:3 -cellmode:half -sv:none \
     -tmax:"$2" > "$out/$3.log" 2>&1 || fail "DualSPHysics failed on $1 (log: $out/$3.log)"
   # Run.csv: one header line and one data line, ';'-separated; Np, TSimul and Steps by name.
   awk -F';' -v mem="$(cat "$out/$3.mem")" 'NR==1 {for (i=1;i<=NF;i++) col[$i]=i}
@@ -81,15 +85,36 @@ run_ds() {
            printf "%.6g %s %s\n", np*st/$col["TSimul"], mem, np}' "$dir/Run.csv"
 }
 
-# compare LABEL VRSPH_CASE DS_NAME T
+# peer_case_dir VRSPH_CASE DS_NAME [SET...] -> the folder holding DS_NAME.xml/.bi4: --ds-cases
+# when given (and, for a GenCase-made name, required there), else written from vrsph's particles.
+peer_case_dir() {
+  local vcase=$1 dname=$2; shift 2
+  if [ -n "$ds_cases" ] && { [ -f "$ds_cases/$dname.xml" ] || [ "$dname" != Spheric3D_400k ]; }; then
+    [ -f "$ds_cases/$dname.xml" ] && [ -f "$ds_cases/$dname.bi4" ] ||
+      fail "--ds-cases: $ds_cases/$dname.xml and .bi4 missing (run GenCase on bench/peer/${dname}_Def.xml)"
+    echo "$ds_cases"; return
+  fi
+  local made="$out/peer_cases" run="$out/peer_cases/$dname.run"
+  mkdir -p "$made"
+  "$vrsph" run "$vcase" --out "$run" --force --quiet --threads "$threads" "$@" \
+    --set case.end_time=1e-9 --set output.interval=1 --set 'output.formats=["csv"]' \
+    > "$run.log" 2>&1 || fail "vrsph could not write the particles of $vcase (log: $run.log)"
+  python3 "$root/scripts/peer_case.py" "$run" "$made/$dname" >&2 ||
+    fail "scripts/peer_case.py failed on $run"
+  rm -rf "$run"
+  echo "$made"
+}
+
+# compare LABEL VRSPH_CASE DS_NAME T [SET...]
 compare() {
-  local label=$1 vcase=$2 dname=$3 t=$4 r
-  [ -f "$ds_cases/$dname.xml" ] && [ -f "$ds_cases/$dname.bi4" ] ||
-    fail "--ds-cases: $ds_cases/$dname.xml and .bi4 missing (run GenCase on bench/peer/${dname}_Def.xml)"
+  local label=$1 vcase=$2 dname=$3 t=$4 r dir; shift 4
+  local extra=("$@")
+  dir=$(peer_case_dir "$vcase" "$dname" "${extra[@]}")
+  echo "  $label: peer case $dir/$dname"
   : > "$out/$label.rounds"
   for r in $(seq 1 "$runs"); do
-    read -r vs vmem vbytes < <(run_vrsph "$vcase" "$t" "$label-vrsph-$r")
-    read -r ps pmem np < <(run_ds "$dname" "$t" "$label-ds-$r")
+    read -r vs vmem vbytes < <(run_vrsph "$vcase" "$t" "$label-vrsph-$r" "${extra[@]}")
+    read -r ps pmem np < <(run_ds "$dir/$dname" "$t" "$label-ds-$r")
     echo "$vs $ps $vmem $pmem $np $vbytes" >> "$out/$label.rounds"
     printf '  %s round %d: vrsph %.3f M, DualSPHysics %.3f M particle-steps/s\n' "$label" "$r" \
       "$(echo "$vs" | awk '{print $1/1e6}')" "$(echo "$ps" | awk '{print $1/1e6}')"
@@ -114,6 +139,8 @@ for c in "${list[@]}"; do
   case "$c" in
     2d) compare 2d "$root/cases/bench_dam_break_2d.toml" Dam2D "${time:-0.05}" ;;
     3d) compare 3d "$root/cases/bench_dam_break_3d.toml" Spheric3D "${time:-0.02}" ;;
-    *) fail "--cases: unknown case '$c' (2d, 3d)" ;;
+    3d_400k) compare 3d_400k "$root/cases/bench_dam_break_3d.toml" Spheric3D_400k \
+               "${time:-0.006}" --set resolution.dp=0.015 ;;
+    *) fail "--cases: unknown case '$c' (2d, 3d, 3d_400k)" ;;
   esac
 done

@@ -33,6 +33,14 @@ v=$(python3 -c "import json; print(json.load(open('$tmp/peer/2d-vrsph-1.json'))[
 want=$(awk -v v="$v" 'BEGIN { printf "ratio %.2f", v / 4270750 }')
 [[ "$line" == *"$want"* ]] || fail "ratio: want '$want' in: $line"
 
+# Without --ds-cases the peer case is written from vrsph's own particles (scripts/peer_case.py).
+"$root/scripts/bench_peer.sh" --ds "$tmp/fake_ds" --vrsph "$vrsph" --cases 2d --runs 1 \
+  --threads 1 --time 0.0002 --out "$tmp/peer_own" > "$tmp/peer_own.log" 2>&1 ||
+  fail "bench_peer.sh without --ds-cases exited $?: $(cat "$tmp/peer_own.log")"
+grep -q "peer case $tmp/peer_own/peer_cases/Dam2D" "$tmp/peer_own.log" ||
+  fail "peer case not written from vrsph's particles: $(cat "$tmp/peer_own.log")"
+[ -s "$tmp/peer_own/peer_cases/Dam2D.bi4" ] || fail "no Dam2D.bi4 written"
+
 if "$root/scripts/bench_peer.sh" --ds "$tmp/fake_ds" --ds-cases "$tmp/nowhere" --vrsph "$vrsph" \
   --cases 2d --runs 1 > "$tmp/bad.log" 2>&1; then fail "missing peer cases accepted"; fi
 grep -q "Dam2D.xml and .bi4 missing" "$tmp/bad.log" || fail "bad message: $(cat "$tmp/bad.log")"
