@@ -64,7 +64,8 @@ std::vector<ExtraField> surface_extras(Simulation<D>& sim) {
 // oscillations).
 bool has_laplace(const CaseSpec& spec) { return spec.laplace_pressure && !spec.lines.empty(); }
 
-// Series columns added with variable resolution: per-level counts and fluid masses, and the
+// Series columns added with variable resolution: per-level counts, fluid masses and the mass
+// held by the level's mass points (accumulated from the flux, not yet a particle), and the
 // particles created and deleted at the interfaces so far.
 void add_level_columns(std::vector<SeriesExtraColumn>& c, std::size_t levels) {
   if (levels < 2) return;
@@ -75,6 +76,8 @@ void add_level_columns(std::vector<SeriesExtraColumn>& c, std::size_t levels) {
                  [l](const SeriesInputs& in) { return double(in.levels[l].n_buffer); }});
     c.push_back({fmt::format("mass_fluid_L{}", l),
                  [l](const SeriesInputs& in) { return in.levels[l].mass_fluid; }});
+    c.push_back({fmt::format("mass_stored_L{}", l),
+                 [l](const SeriesInputs& in) { return in.mass_stored[l]; }});
   }
   c.push_back({"created", [](const SeriesInputs& in) { return double(in.counters->created); }});
   c.push_back({"deleted", [](const SeriesInputs& in) { return double(in.counters->deleted); }});
@@ -249,6 +252,9 @@ void RunOutputs<D>::append_series(const Simulation<D>& sim, SeriesInputs& in) {
   }
   SeriesRow row;
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
+    double stored = 0.0;
+    for (const MassPoint<D>& p : sim.link(l).mass_points) stored += p.mass;
+    in.mass_stored.push_back(stored);
     in.levels.push_back(compute_series_row<D>(sim.level(l).ps, sim.time(),
                                               static_cast<long>(sim.step_count()), sim.dt_last()));
     if (l == 0)

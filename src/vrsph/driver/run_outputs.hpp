@@ -26,6 +26,7 @@ struct SeriesInputs {
   LaplaceError laplace;         // only with a Laplace check (analysis.laplace_pressure and a line)
   LaplaceError laplace_interp;  // the same on the interpolated line
   std::vector<std::array<double, 3>> wall_forces;  // the fluid's force on each wall block (N)
+  std::vector<double> mass_stored;  // kg: mass held by each level's mass points (refinement)
 };
 
 // An extra series.csv column: its name in the header and its value in a row. The list of them,
