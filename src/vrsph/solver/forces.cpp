@@ -223,11 +223,13 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     const auto i = static_cast<std::uint32_t>(ii);
     const Self<T> me(cols, i);
     ForceSums s;
-    scratch.fluid.gather(cols.pos, src, pad, grid, cells[i], Groups::fluid, rest_ptr);
+    const bool sweep = ps.kind[i] != Kind::buffer || buffer_reaction;
+    if (sweep) scratch.fluid.gather(cols.pos, src, pad, grid, cells[i], Groups::fluid, rest_ptr);
     if (ps.kind[i] == Kind::buffer) {
       // v and rho come from another level: acc is only the reaction of this level's fluid and
       // buffer neighbours (walls left out), from which the coupling measures the net force the
-      // buffer exerts on the fluid. Buffer-buffer pairs cancel in that sum.
+      // buffer exerts on the fluid. Buffer-buffer pairs cancel in that sum. Without it
+      // (buffer_reaction false) a buffer particle needs no neighbour at all.
       if (buffer_reaction) fluid_sweep<D, VM, DM, false>(prm, me, scratch.fluid, s);
       ps.acc[i] = acceleration<D>(s);
       ps.drho[i] = 0.0;
