@@ -70,6 +70,10 @@ TEST(CaseParser, ImpossibleValues) {
   expect_contains(
       error_of(m + "[[refinement]]\nmin = [0, 0]\nmax = [1, 1]\nbuffer_rounding = \"up\"\n"),
       {"refinement.0.buffer_rounding", "up", "whole_dp"});
+  expect_contains(error_of(m + "[numerics]\nstart_damping_time = -1\n"),
+                  {"numerics.start_damping_time = -1", ">= 0"});
+  expect_contains(error_of(m + "[numerics]\nstart_damping_tau = 0\n"),
+                  {"numerics.start_damping_tau = 0", "> 0"});
   expect_contains(error_of(m + "[numerics]\nvres_buffer_fill_min = 0.5\n"),
                   {"numerics.vres_buffer_fill_min = 0.5", "[0, 0.5)", "free surface"});
 }

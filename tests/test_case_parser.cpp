@@ -42,6 +42,8 @@ vres_conserve_momentum = true
 vres_buffer_fill_min = 0.3
 vres_buffer_surface = "donor"
 vres_shepard_fill = 0.9
+start_damping_time = 0.03
+start_damping_tau = 0.002
 [[fluid_block]]
 shape = "circle"
 center = [0.001, -0.0005]
@@ -220,6 +222,17 @@ TEST(CaseParser, EveryKeyCaseSetsTheVresKeys) {
   const CaseSpec s = parse_text(kEveryKey);
   EXPECT_EQ(s.vres_buffer_surface, BufferSurface::donor);
   EXPECT_EQ(s.vres_shepard_fill, 0.9);
+}
+
+// The damped start of the every-key case, read and written back (only when on).
+TEST(CaseParser, EveryKeyCaseSetsTheDampedStart) {
+  const CaseSpec s = parse_text(kEveryKey);
+  EXPECT_EQ(s.numerics.start_damping_time, 0.03);
+  EXPECT_EQ(s.numerics.start_damping_tau, 0.002);
+  const CaseSpec r = reparse(case_to_toml(s));
+  EXPECT_EQ(r.numerics.start_damping_time, 0.03);
+  EXPECT_EQ(r.numerics.start_damping_tau, 0.002);
+  EXPECT_EQ(case_to_toml(parse_text(kMinimal)).find("start_damping"), std::string::npos);
 }
 
 // buffer_rounding is per box, "none" where not given.

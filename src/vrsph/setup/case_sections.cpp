@@ -177,6 +177,9 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
   n.hydrostatic_initial_density =
       r.opt_bool("hydrostatic_initial_density").value_or(n.hydrostatic_initial_density);
   n.local_time_stepping = r.opt_bool("local_time_stepping").value_or(n.local_time_stepping);
+  n.start_damping_time =
+      r.opt_number("start_damping_time", kNonNegative).value_or(n.start_damping_time);
+  n.start_damping_tau = r.opt_number("start_damping_tau", kPositive).value_or(n.start_damping_tau);
 }
 
 // One [[fluid_block]]: circle/sphere (center, radius >= dp) or box (min, max).

@@ -107,6 +107,8 @@ struct NumericsSpec {
   SurfaceTensionParams surface_tension;
   bool hydrostatic_initial_density = true;  // gravity cases start at rest in equilibrium
   bool local_time_stepping = false;         // variable resolution: each level on its own dt
+  double start_damping_time = 0.0;          // s: fluid velocities damped while t < this (0: off)
+  double start_damping_tau = 1.0e-3;        // s: their decay time meanwhile
 
   bool operator==(const NumericsSpec&) const = default;
 };

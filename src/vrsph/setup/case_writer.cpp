@@ -128,6 +128,10 @@ void write_numerics(Writer& w, const CaseSpec& s) {
   w.kv("hydrostatic_initial_density", toml_bool(n.hydrostatic_initial_density));
   if (n.local_time_stepping)  // written only when on, as precision
     w.kv("local_time_stepping", "true", "each resolution level on its own dt");
+  if (n.start_damping_time > 0.0) {  // written only when on, as precision
+    w.kv("start_damping_time", num(n.start_damping_time), "s: fluid velocities damped before");
+    w.kv("start_damping_tau", num(n.start_damping_tau), "s: their decay time meanwhile");
+  }
   w.kv("vres_conserve_momentum", toml_bool(s.vres_conserve_momentum));
   w.kv("vres_buffer_fill_min", num(s.vres_buffer_fill_min),
        "donor fill below which a buffer particle is deleted (0.5 on a free surface)");

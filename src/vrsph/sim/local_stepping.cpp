@@ -26,6 +26,7 @@
 #include <chrono>
 #include <cstdint>
 
+#include "vrsph/physics/start_damping.hpp"
 #include "vrsph/sim/simulation.hpp"
 #include "vrsph/solver/stepper.hpp"
 
@@ -163,6 +164,8 @@ void Simulation<D>::step_one_level(std::size_t k, double t0, double dt) {
   coupling_.before_corrector(levels_, k);
   tu = now_seconds();
   corrector(L, dt);
+  const NumericsSpec& n = spec_.numerics;
+  damp_fluid_velocities(L, start_damping_factor(t0, dt, n.start_damping_time, n.start_damping_tau));
   times_.update += now_seconds() - tu;
   counters_.particle_steps += L.ps.size();
   counters_.pairs += s.pairs;

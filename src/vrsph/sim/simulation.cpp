@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "vrsph/core/to_vec.hpp"
+#include "vrsph/physics/start_damping.hpp"
 #include "vrsph/setup/block_extent.hpp"
 #include "vrsph/setup/geometry.hpp"
 #include "vrsph/sim/level_setup.hpp"
@@ -248,6 +249,9 @@ void Simulation<D>::step() {
   coupling_.before_corrector(levels_);
   t0 = now_seconds();
   for (Level<D>& L : levels_) corrector(L, dt);
+  const NumericsSpec& n = spec_.numerics;
+  const double damping = start_damping_factor(t_, dt, n.start_damping_time, n.start_damping_tau);
+  for (Level<D>& L : levels_) damp_fluid_velocities(L, damping);
   times_.update += now_seconds() - t0;
   counters_.particle_steps += total_particles();
   sort_all(coupling_.multi_level());  // step copies: read by the coupling only after the step

@@ -107,6 +107,15 @@ void corrector(Level<D>& L, double dt) {
 }
 
 template <int D>
+void damp_fluid_velocities(Level<D>& L, double factor) {
+  if (factor == 1.0) return;
+  ParticleSet<D>& ps = L.ps;
+  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
+    if (ps.kind[i] == Kind::fluid) ps.vel[i] *= factor;
+  });
+}
+
+template <int D>
 DtChoice level_dt(const Level<D>& L, const ForceStats& s, double c0) {
   double vmax2 = 0.0;
   for (std::size_t i = 0; i < L.ps.size(); ++i) {
@@ -158,6 +167,8 @@ template void predictor<2>(Level<2>&, double);
 template void predictor<3>(Level<3>&, double);
 template void corrector<2>(Level<2>&, double);
 template void corrector<3>(Level<3>&, double);
+template void damp_fluid_velocities<2>(Level<2>&, double);
+template void damp_fluid_velocities<3>(Level<3>&, double);
 template DtChoice level_dt<2>(const Level<2>&, const ForceStats&, double);
 template DtChoice level_dt<3>(const Level<3>&, const ForceStats&, double);
 template DtChoice level_dt_at_start<2>(const Level<2>&, double);

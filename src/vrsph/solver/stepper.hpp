@@ -37,6 +37,10 @@ void predictor(Level<D>& L, double dt);
 template <int D>
 void corrector(Level<D>& L, double dt);
 
+// v *= factor for the fluid particles of L (physics/start_damping.hpp); nothing when factor is 1.
+template <int D>
+void damp_fluid_velocities(Level<D>& L, double factor);
+
 // The dt this level allows after a force evaluation with statistics s (its own speeds).
 template <int D>
 DtChoice level_dt(const Level<D>& L, const ForceStats& s, double c0);
