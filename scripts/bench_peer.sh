@@ -20,7 +20,8 @@
 #                   same 3D case at dp 0.015 m (397,993; its peer case is always written from
 #                   vrsph's particles unless DIR holds Spheric3D_400k.xml/.bi4)
 #   --time T        physical time of every run (default: 0.05 s in 2D, 0.02 s in 3D)
-#   --set KEY=VALUE a case override for the vrsph runs (numerics.precision="mixed")
+#   --set KEY=VALUE a case override for the vrsph runs (numerics.precision="mixed"), also
+#                   applied to the particles a peer case is written from
 #   --out DIR       working directory (default a fresh one under /tmp), kept for inspection
 #
 # Both codes run the same options: symplectic, Wendland, artificial viscosity, Fourtakas density
@@ -43,7 +44,7 @@ while [ $# -gt 0 ]; do
     --time) time=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --set) sets+=(--set "$2"); shift 2 ;;
-    -h|--help) sed -n '2,29p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
     *) echo "bench_peer.sh: unknown option '$1' (see --help)" >&2; exit 1 ;;
   esac
 done
@@ -96,7 +97,7 @@ peer_case_dir() {
   fi
   local made="$out/peer_cases" run="$out/peer_cases/$dname.run"
   mkdir -p "$made"
-  "$vrsph" run "$vcase" --out "$run" --force --quiet --threads "$threads" "$@" \
+  "$vrsph" run "$vcase" --out "$run" --force --quiet --threads "$threads" "$@" "${sets[@]}" \
     --set case.end_time=1e-9 --set output.interval=1 --set 'output.formats=["csv"]' \
     > "$run.log" 2>&1 || fail "vrsph could not write the particles of $vcase (log: $run.log)"
   python3 "$root/scripts/peer_case.py" "$run" "$made/$dname" >&2 ||

@@ -168,7 +168,7 @@ def write_bi4(path, p, walls, fluid, lo, hi):
     write_atomic(path, blob)
 
 
-def write_xml(path, p, nb, nf, lo, hi):
+def write_xml(path, p, nb, nf):
     dim, dp, h = p["dim"], p["dp"], p["h"]
     coefh = h / (dp * math.sqrt(dim))
     b = p["c0"] ** 2 * p["rho0"] / p["gamma"]
@@ -256,7 +256,7 @@ def main():
         fail(f"{snap}: no fluid particle")
     lo, hi = bounds(walls + fluid)
     write_bi4(a.out_prefix + ".bi4", p, walls, fluid, lo, hi)
-    write_xml(a.out_prefix + ".xml", p, len(walls), len(fluid), lo, hi)
+    write_xml(a.out_prefix + ".xml", p, len(walls), len(fluid))
     print(f"peer_case.py: wrote {a.out_prefix}.xml/.bi4: {len(walls)} fixed boundary + "
           f"{len(fluid)} fluid particles, dp {p['dp']}, h {p['h']}")
 
