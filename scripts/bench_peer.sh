@@ -19,7 +19,8 @@
 #                   particles), 3d = cases/bench_dam_break_3d.toml (116,184), 3d_400k = the
 #                   same 3D case at dp 0.015 m (397,993; its peer case is always written from
 #                   vrsph's particles unless DIR holds Spheric3D_400k.xml/.bi4)
-#   --time T        physical time of every run (default: 0.05 s in 2D, 0.02 s in 3D)
+#   --time T        physical time of every run (default: 0.05 s in 2D, 0.02 s in 3D, 0.006 s
+#                   for 3d_400k)
 #   --set KEY=VALUE a case override for the vrsph runs (numerics.precision="mixed"), also
 #                   applied to the particles a peer case is written from
 #   --out DIR       working directory (default a fresh one under /tmp), kept for inspection
@@ -44,7 +45,7 @@ while [ $# -gt 0 ]; do
     --time) time=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --set) sets+=(--set "$2"); shift 2 ;;
-    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,31p' "$0"; exit 0 ;;
     *) echo "bench_peer.sh: unknown option '$1' (see --help)" >&2; exit 1 ;;
   esac
 done
