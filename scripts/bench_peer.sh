@@ -64,7 +64,8 @@ median() { sort -g | awk '{a[NR]=$1} END {if (NR==0) {print "nan"; exit}
 
 # run_vrsph CASE T TAG [SET...] -> "particle_steps_per_second peak_kib bytes_per_particle"
 run_vrsph() {
-  local json="$out/$3.json" c=$1 t=$2 tag=$3; shift 3
+  local c=$1 t=$2 tag=$3; shift 3
+  local json="$out/$tag.json"
   /usr/bin/time -f %M -o "$out/$tag.mem" "$vrsph" bench "$c" --time "$t" --threads "$threads" \
     "$@" "${sets[@]}" --json "$json" > "$out/$tag.log" 2>&1 || fail "vrsph failed on $c (log: $out/$tag.log)"
   python3 - "$json" "$(cat "$out/$tag.mem")" <<'PY'
@@ -88,10 +89,12 @@ run_ds() {
 }
 
 # peer_case_dir VRSPH_CASE DS_NAME [SET...] -> the folder holding DS_NAME.xml/.bi4: --ds-cases
-# when given (and, for a GenCase-made name, required there), else written from vrsph's particles.
+# when given (and required there for a case with a GenCase definition in bench/peer/), else
+# written from vrsph's particles.
 peer_case_dir() {
   local vcase=$1 dname=$2; shift 2
-  if [ -n "$ds_cases" ] && { [ -f "$ds_cases/$dname.xml" ] || [ "$dname" != Spheric3D_400k ]; }; then
+  if [ -n "$ds_cases" ] && { [ -f "$ds_cases/$dname.xml" ] ||
+                             [ -f "$root/bench/peer/${dname}_Def.xml" ]; }; then
     [ -f "$ds_cases/$dname.xml" ] && [ -f "$ds_cases/$dname.bi4" ] ||
       fail "--ds-cases: $ds_cases/$dname.xml and .bi4 missing (run GenCase on bench/peer/${dname}_Def.xml)"
     echo "$ds_cases"; return

@@ -124,6 +124,8 @@ def params(case, summary):
              "(DualSPHysics DensityDT 3) or 'none' are mapped")
     g = p["gravity"]
     p["g3"] = (g[0], g[1], g[2]) if dim == 3 else (g[0], 0.0, g[1])
+    p["b"] = p["c0"] ** 2 * p["rho0"] / p["gamma"]  # Tait's B
+    p["mass"] = p["rho0"] * dp ** dim  # of every particle, walls included
     return p
 
 
@@ -135,8 +137,7 @@ def bounds(parts):
 
 def write_bi4(path, p, walls, fluid, lo, hi):
     parts = walls + fluid
-    n, b = len(parts), p["c0"] ** 2 * p["rho0"] / p["gamma"]
-    mass = p["rho0"] * p["dp"] ** p["dim"]
+    n, b, mass = len(parts), p["b"], p["mass"]
     head = [value("Piece", UINT, 0), value("Npiece", UINT, 1), value("RunCode", TEXT, ""),
             value("Date", TEXT, ""), value("AppName", TEXT, "vrsph scripts/peer_case.py"),
             value("CaseName", TEXT, p["name"]), value("Data2d", BOOL, p["dim"] == 2),
@@ -171,8 +172,7 @@ def write_bi4(path, p, walls, fluid, lo, hi):
 def write_xml(path, p, nb, nf):
     dim, dp, h = p["dim"], p["dp"], p["h"]
     coefh = h / (dp * math.sqrt(dim))
-    b = p["c0"] ** 2 * p["rho0"] / p["gamma"]
-    mass = p["rho0"] * dp ** dim
+    b, mass = p["b"], p["mass"]
     g = p["g3"]
     ddt = (f'<parameter key="DensityDT" value="3" />\n'
            f'            <parameter key="DensityDTvalue" value="{p["ddt"]!r}" />'
