@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "vrsph/core/vec.hpp"
@@ -98,10 +99,28 @@ class CellGrid {
   std::int64_t block_first(std::int64_t c) const { return c - (c % n_[0]) % block_width_; }
   template <class Fn>
   void for_each_block_run(std::int64_t c0, Group g, Fn&& fn) const {
-    const std::int64_t x0 = c0 % n_[0];
-    const std::int64_t lo = std::max<std::int64_t>(x0 - reach_, 0) - x0;
-    const std::int64_t hi = std::min<std::int64_t>(x0 + block_width_ - 1 + reach_, n_[0] - 1) - x0;
+    const auto [lo, hi] = block_row_span(c0);
     for_each_row(c0, g, lo, hi, fn);
+  }
+
+  // Per-cell reductions over a block's stencil (solver/normal_bound.hpp): the particles of
+  // group g in cell c; the offsets [lo, hi] within c's row of the cells that block c0's runs
+  // span (as for_each_block_run clips them); fn(cell) for the cell of c's column in each row of
+  // its stencil (c + dy stride_y + dz stride_z).
+  std::pair<std::uint32_t, std::uint32_t> cell_run(std::int64_t c, Group g) const {
+    const std::int64_t k = c + static_cast<std::int64_t>(g) * ncell_total_;
+    return {starts_[k], starts_[k + 1]};
+  }
+  std::pair<std::int64_t, std::int64_t> block_row_span(std::int64_t c0) const {
+    const std::int64_t x0 = c0 % n_[0];
+    return {std::max<std::int64_t>(x0 - reach_, 0) - x0,
+            std::min<std::int64_t>(x0 + block_width_ - 1 + reach_, n_[0] - 1) - x0};
+  }
+  template <class Fn>
+  void for_each_stencil_row(std::int64_t c, Fn&& fn) const {
+    const int rz = D == 3 ? reach_ : 0;
+    for (int dz = -rz; dz <= rz; ++dz)
+      for (int dy = -reach_; dy <= reach_; ++dy) fn(c + dy * stride_[1] + dz * stride_[D - 1]);
   }
 
   // Cell of each particle after the last sort (same order as the particle arrays).

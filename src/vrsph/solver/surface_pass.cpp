@@ -175,8 +175,9 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     lambda_col = sf.lambda.data();
   }
   using S = SurfaceBlock<D, 2, T>;
-  using Scratch = NormalsScratch<T, typename S::Block>;
+  using Scratch = NormalsScratch<typename S::Block>;
   const S src(cols, {volume_column<T>(cols), lambda_col});
+  if (!sf.grad_w.empty()) sf.lambda_ranges.build(grid, lambda_col);
   auto body = [&](std::int64_t ii, Scratch& sc) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
@@ -187,7 +188,7 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     const bool across = !sf.cross_hit.empty() && sf.cross_hit[i] != 0;
     const double h_wide = sf.h_wide.empty() ? 0.0 : sf.h_wide[i];
     if (difference && !sf.grad_w.empty() && !across) {  // the bound knows this level only
-      lambda_range<D>(grid, cell, lambda_col, sc);
+      lambda_range<D>(grid, cell, sf.lambda_ranges, sc);
       const double limit = prm.surface_tension.normal_epsilon * lambda_i / prm.h;
       if (normal_surely_zero<D, T>(sc.lo, sc.hi, lambda_ref, sf.l_corr[i], sf.grad_w[i], limit))
         return;  // the normal stays 0

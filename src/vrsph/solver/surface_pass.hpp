@@ -13,6 +13,7 @@
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/solver/columns.hpp"
 #include "vrsph/solver/cross_level.hpp"
+#include "vrsph/solver/normal_bound.hpp"
 #include "vrsph/solver/params.hpp"
 
 namespace vrsph {
@@ -39,6 +40,8 @@ struct SurfaceFields {
   // pass 2 and the normal for pass 3 (pass 1 reads the level's float volumes).
   std::vector<float> lambda_f;
   std::array<std::vector<float>, D> normal_f;
+  // Pass 2's scratch: lambda's range per cell and row of a block (solver/normal_bound.hpp).
+  BlockRanges lambda_ranges;
 
   // Surface fields across levels (solver/cross_level.hpp): the other levels' fluid as further
   // neighbours (empty: none), and which particles found any in pass 1 (passes 2 and 3 look for

@@ -154,8 +154,7 @@ void LevelCoupling<D>::after_forces(std::vector<Level<D>>& levels, bool capillar
   Vec<D> f{};
   if (coupling) f += coupling_net_force(levels);
   if (net_st) f += surface_net_force(levels);
-  double mass = 0.0;
-  fluid_momentum(levels, mass);
+  const double mass = fluid_mass(levels);
   if (mass > 0.0) add_to_fluid(levels, f * (-1.0 / mass), false);
 }
 
@@ -218,8 +217,7 @@ Vec<D> LevelCoupling<D>::net_force(const std::vector<Level<D>>& levels, std::siz
 
 template <int D>
 void LevelCoupling<D>::remove_impulse(std::vector<Level<D>>& levels, const Vec<D>& impulse) const {
-  double mass = 0.0;
-  fluid_momentum(levels, mass);
+  const double mass = fluid_mass(levels);
   if (mass > 0.0) add_to_fluid(levels, impulse * (-1.0 / mass), true);
 }
 

@@ -51,6 +51,18 @@ Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
   return p;
 }
 
+// Fluid mass sum_i m_i over all levels, in fluid_momentum's order (the same bits).
+template <int D>
+double fluid_mass(const std::vector<Level<D>>& levels) {
+  double mass = 0.0;
+  for (const Level<D>& L : levels) {
+    for (std::size_t i = 0; i < L.ps.size(); ++i) {
+      if (L.ps.kind[i] == Kind::fluid) mass += L.ps.mass[i];
+    }
+  }
+  return mass;
+}
+
 // The mass of buffer particle i as its level's sums see it: m_i omega_i (LevelColumns::weight,
 // numerics.vres_buffer_ramp), so that its reaction balances the weighted force it exerts.
 template <int D>
