@@ -80,7 +80,7 @@ void check_resume_overrides(const std::vector<std::string>& sets) {
 struct CliArgs {
   std::string case_path, out_dir, resume_dir, json_out;
   std::vector<std::string> sets;
-  int threads = 0, cells = 2, block = kDefaultCellsPerBlock, halt_after = -1;
+  int threads = 0, cells = 0, block = 0, halt_after = -1;  // cells, block 0: by dimension
   bool quiet = false, force = false;
   double bench_time = 0.05;
   double max_particles = 0.0;  // 0: no limit
@@ -109,9 +109,11 @@ CLI::App* add_run_command(CLI::App& app, CliArgs& a) {
   run->add_option("--set", a.sets, "override a case key: KEY=VALUE (repeatable)");
   run->add_flag("--quiet", a.quiet, "no progress line and no start/end summaries");
   run->add_flag("--force", a.force, "overwrite an earlier run in the output folder");
-  run->add_option("--cells-per-support", a.cells, "neighbour cells per 2h (1 full, 2 half)")
+  run->add_option("--cells-per-support", a.cells,
+                  "neighbour cells per 2h (1 full, 2 half; default 1 in 2D, 2 in 3D)")
       ->check(CLI::Range(1, 4));
-  run->add_option("--cells-per-block", a.block, "cells of a row that share a candidate block")
+  run->add_option("--cells-per-block", a.block,
+                  "cells of a row that share a candidate block (default 1 in 2D, 2 in 3D)")
       ->check(CLI::Range(1, 8));
   run->add_option("--halt-after-output", a.halt_after,
                   "testing aid: stop abruptly right after writing snapshot K (as a kill would)")
@@ -139,9 +141,13 @@ CLI::App* add_bench_command(CLI::App& app, CliArgs& a) {
       ->check(CLI::Range(1, 4096).description("an integer >= 1"));
   bench->add_option("--set", a.sets, "override a case key: KEY=VALUE (repeatable)");
   bench->add_option("--json", a.json_out, "also write the figures to this JSON file");
-  bench->add_option("--cells-per-support", a.cells, "neighbour cells per 2h (1 full, 2 half)")
+  bench
+      ->add_option("--cells-per-support", a.cells,
+                   "neighbour cells per 2h (1 full, 2 half; default 1 in 2D, 2 in 3D)")
       ->check(CLI::Range(1, 4));
-  bench->add_option("--cells-per-block", a.block, "cells of a row that share a candidate block")
+  bench
+      ->add_option("--cells-per-block", a.block,
+                   "cells of a row that share a candidate block (default 1 in 2D, 2 in 3D)")
       ->check(CLI::Range(1, 8));
   return bench;
 }
@@ -151,8 +157,7 @@ int run_command(const CliArgs& a) {
   ro.threads = a.threads;
   ro.quiet = a.quiet;
   ro.force = a.force;
-  ro.cells_per_support = a.cells;
-  ro.cells_per_block = a.block;
+  ro.cells = {a.cells, a.block};
   ro.halt_after_output = a.halt_after;
   if (!a.resume_dir.empty()) {
     if (!a.case_path.empty())
@@ -187,8 +192,7 @@ int bench_command(const CliArgs& a) {
   BenchOptions bo;
   bo.sim_time = a.bench_time;
   bo.threads = a.threads;
-  bo.cells_per_support = a.cells;
-  bo.cells_per_block = a.block;
+  bo.cells = {a.cells, a.block};
   bo.origin = origin_of(a, path);
   if (!a.json_out.empty()) bo.json_out = a.json_out;
   return bench_case(load_given_case(path, a.sets), bo);

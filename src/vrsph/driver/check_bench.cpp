@@ -100,7 +100,7 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
   spec.end_time = opt.sim_time;
   preflight_case(spec, opt.origin);
   const std::uint64_t rss_before = status_bytes("VmRSS");
-  Simulation<D> sim(spec, opt.cells_per_support, opt.cells_per_block);
+  Simulation<D> sim(spec, opt.cells);
   const int threads = exec::thread_count();
   const auto t0 = std::chrono::steady_clock::now();
   while (sim.time() < opt.sim_time * (1 - 1e-9)) sim.step();
@@ -124,8 +124,8 @@ int bench_impl(CaseSpec& spec, const BenchOptions& opt) {
       {"sort", t.sort / wall},       {"forces", t.forces / wall},
       {"surface", t.surface / wall}, {"update", t.update / wall},
       {"checks", t.checks / wall},   {"other", std::max(0.0, wall - accounted) / wall}};
-  j["cells_per_support"] = opt.cells_per_support;
-  j["cells_per_block"] = opt.cells_per_block;
+  j["cells_per_support"] = sim.grid().reach();  // as resolved for the dimension
+  j["cells_per_block"] = sim.grid().block_width();
   // Memory of the simulation: the peak resident size less what the program held before building
   // it (code, libraries, the case), per particle.
   const std::uint64_t peak = status_bytes("VmHWM");

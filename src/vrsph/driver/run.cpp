@@ -228,8 +228,7 @@ template <int D>
 int run_impl(CaseSpec& spec, const RunOptions& opt, RunReport& report, const StopSignals& signals) {
   Checkpoint ck;
   if (opt.resume) ck = load_resume_checkpoint(spec, opt.out_dir);
-  Simulation<D> sim(spec, opt.cells_per_support,
-                    opt.cells_per_block);  // fills spec.max_speed when derived
+  Simulation<D> sim(spec, opt.cells);  // fills spec.max_speed when derived
   const int index = opt.resume ? resume_from(sim, ck, spec, opt.out_dir) : 0;
   ck = Checkpoint{};
   write_file_atomic(opt.out_dir / "case.toml", case_to_toml(spec));

@@ -34,10 +34,9 @@ struct RunOptions {
   std::filesystem::path out_dir;
   int threads = 0;  // 0: OpenMP default
   bool quiet = false;
-  bool force = false;   // overwrite an existing run in out_dir
-  bool resume = false;  // continue from out_dir/checkpoint.bin
-  int cells_per_support = 2;
-  int cells_per_block = kDefaultCellsPerBlock;
+  bool force = false;          // overwrite an existing run in out_dir
+  bool resume = false;         // continue from out_dir/checkpoint.bin
+  CellLayout cells;            // 0: the dimension's default (resolve_cell_layout)
   int halt_after_output = -1;  // testing aid: exit abruptly after snapshot K, as a kill would
 };
 
@@ -55,8 +54,7 @@ struct BenchOptions {
   SetupOrigin origin;
   double sim_time = 0.05;
   int threads = 0;
-  int cells_per_support = 2;
-  int cells_per_block = kDefaultCellsPerBlock;
+  CellLayout cells;  // 0: the dimension's default (resolve_cell_layout)
   std::optional<std::filesystem::path> json_out;
 };
 

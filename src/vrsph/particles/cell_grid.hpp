@@ -20,9 +20,26 @@
 
 namespace vrsph {
 
-// Cells of one row that share a candidate block by default (CellGrid::block_width): chosen by
-// measurement, docs/validation.md ("Candidate blocks").
+// Cells of one row that share a candidate block in a grid built without further choice
+// (CellGrid::block_width).
 inline constexpr int kDefaultCellsPerBlock = 2;
+
+// The cells a simulation uses unless told otherwise, by dimension, chosen by measurement
+// (docs/validation.md, "Cells by dimension"): in 2D full cells (2h) whose blocks each hold one
+// cell's stencil (3 runs per block, shared by about 7 particles at h = 1.3 dp); in 3D half cells
+// (h) with blocks of two cells of a row (a full cell's 27-cell stencil holds 2.4 times the
+// neighbours, against 1.6 for the half cells' block).
+struct CellLayout {
+  int cells_per_support = 0;  // cells per 2h (1 full, 2 half); 0: the dimension's default
+  int cells_per_block = 0;    // cells of a row that share a block; 0: the dimension's default
+};
+template <int D>
+constexpr CellLayout resolve_cell_layout(CellLayout asked) {
+  const CellLayout def = D == 2 ? CellLayout{1, 1} : CellLayout{2, 2};
+  if (asked.cells_per_support == 0) asked.cells_per_support = def.cells_per_support;
+  if (asked.cells_per_block == 0) asked.cells_per_block = def.cells_per_block;
+  return asked;
+}
 
 enum class Group : int { fluid = 0, wall = 1 };  // fluid group includes buffer particles
 

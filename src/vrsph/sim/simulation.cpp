@@ -50,8 +50,8 @@ Setup resolve_setup(CaseSpec& spec, const InitialSet<D>& init0) {
 }  // namespace
 
 template <int D>
-Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_block)
-    : spec_(spec) {
+Simulation<D>::Simulation(CaseSpec& spec, CellLayout cells) : spec_(spec) {
+  cells = resolve_cell_layout<D>(cells);
   const std::vector<LevelLayout<D>> layout = make_level_layout<D>(spec);
   levels_.resize(layout.size());
   wall_ids_.resize(layout.size());
@@ -88,8 +88,8 @@ Simulation<D>::Simulation(CaseSpec& spec, int cells_per_support, int cells_per_b
   if (spec.domain_min) lo = origin = to_vec<D>(*spec.domain_min);
   if (spec.domain_max) hi = to_vec<D>(*spec.domain_max);
   for (Level<D>& L : levels_) {
-    L.grid = CellGrid<D>(lo, hi, L.prm.kernel.support(), cells_per_support, origin);
-    L.grid.set_block_width(cells_per_block);
+    L.grid = CellGrid<D>(lo, hi, L.prm.kernel.support(), cells.cells_per_support, origin);
+    L.grid.set_block_width(cells.cells_per_block);
     L.ps.resize(L.ps.size());
     sort_particles(L);
   }

@@ -74,9 +74,9 @@ template <int D>
 class Simulation {
  public:
   // Builds particles and parameters from a validated case. Fills spec.max_speed when it was
-  // derived (so the resolved case records it).
-  explicit Simulation(CaseSpec& spec, int cells_per_support = 2,
-                      int cells_per_block = kDefaultCellsPerBlock);
+  // derived (so the resolved case records it). cells: the neighbour cells (0: the default of
+  // the dimension, resolve_cell_layout).
+  explicit Simulation(CaseSpec& spec, CellLayout cells = {});
 
   void step();  // one symplectic step of size dt_next(), then chooses the next dt
 
