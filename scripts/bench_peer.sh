@@ -26,9 +26,10 @@
 #   --out DIR       working directory (default a fresh one under /tmp), kept for inspection
 #
 # Both codes run the same options: symplectic, Wendland, artificial viscosity, Fourtakas density
-# diffusion (DualSPHysics -ddt:3), cells of h (DualSPHysics -cellmode:half; vrsph's default) and
-# no particle output. Nothing else should run on the machine meanwhile: the figures are ratios of
-# runs made minutes apart.
+# diffusion (DualSPHysics -ddt:3) and no particle output; each code its fastest neighbour cells
+# (DualSPHysics -cellmode:half in 2D and 3D; vrsph its default: full cells in 2D, half in 3D).
+# Nothing else should run on the machine meanwhile: the figures are ratios of runs made minutes
+# apart.
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -45,7 +46,7 @@ while [ $# -gt 0 ]; do
     --time) time=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --set) sets+=(--set "$2"); shift 2 ;;
-    -h|--help) sed -n '2,31p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,32p' "$0"; exit 0 ;;
     *) echo "bench_peer.sh: unknown option '$1' (see --help)" >&2; exit 1 ;;
   esac
 done
