@@ -49,8 +49,10 @@ struct Static {
   SurfaceFields<D> sf;
 };
 
+// cells: the grid's layout (the fixture's default: half cells, blocks of two cells).
 template <int D>
-Static<D> make_static(const std::vector<Vec<D>>& pos, double dp, double hdp = 1.3) {
+Static<D> make_static(const std::vector<Vec<D>>& pos, double dp, double hdp = 1.3,
+                      CellLayout cells = {2, 2}) {
   Static<D> s;
   s.prm = make_params<D>(dp, hdp);
   std::uint64_t id = 0;
@@ -66,7 +68,8 @@ Static<D> make_static(const std::vector<Vec<D>>& pos, double dp, double hdp = 1.
     lo[k] -= 3.0 * dp;
     hi[k] += 3.0 * dp;
   }
-  s.grid = CellGrid<D>(lo, hi, s.prm.kernel.support(), 2);
+  s.grid = CellGrid<D>(lo, hi, s.prm.kernel.support(), cells.cells_per_support);
+  s.grid.set_block_width(cells.cells_per_block);
   EXPECT_TRUE(s.grid.sort(s.ps).empty());
   return s;
 }
