@@ -36,26 +36,32 @@
 
 namespace vrsph {
 
+// Sums over the fluid particles of all levels run in kLanes interleaved lanes (particle i into
+// lane i % kLanes), added in order at the end: a fixed order, independent of the threads. One
+// running sum was a chain of dependent additions that took as long as a neighbour pass's share of
+// a small drop's step.
+inline constexpr int kLanes = 4;
+
 // Fluid momentum sum_i m_i v_i over all levels (buffer and wall particles excluded); mass gets
-// sum_i m_i.
+// sum_i m_i, the same bits as fluid_mass.
 template <int D>
 Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
-  Vec<D> p{};
-  mass = 0.0;
+  Vec<D> lane_p[kLanes] = {};
+  double lane_m[kLanes] = {};
   for (const Level<D>& L : levels) {
     for (std::size_t i = 0; i < L.ps.size(); ++i) {
       if (L.ps.kind[i] != Kind::fluid) continue;
-      p += L.ps.mass[i] * L.ps.vel[i];
-      mass += L.ps.mass[i];
+      lane_p[i % kLanes] += L.ps.mass[i] * L.ps.vel[i];
+      lane_m[i % kLanes] += L.ps.mass[i];
     }
   }
+  Vec<D> p{};
+  mass = 0.0;
+  for (int l = 0; l < kLanes; ++l) p += lane_p[l], mass += lane_m[l];
   return p;
 }
 
-// Fluid mass sum_i m_i over all levels. Summed in kLanes interleaved lanes added in order at the
-// end (a fixed order, independent of the threads): one running sum was a chain of dependent
-// additions that took as long as a neighbour pass's share of a small drop's step.
-inline constexpr int kLanes = 4;
+// Fluid mass sum_i m_i over all levels (fluid_momentum's mass without its momentum).
 template <int D>
 double fluid_mass(const std::vector<Level<D>>& levels) {
   double lane[kLanes] = {};
@@ -89,7 +95,7 @@ Vec<D> coupling_net_force(const std::vector<Level<D>>& levels) {
 }
 
 // F_st: sum over fluid particles of m_i a_st,i (levels without surface tension give zero), in
-// lanes as fluid_mass.
+// lanes.
 template <int D>
 Vec<D> surface_net_force(const std::vector<Level<D>>& levels) {
   Vec<D> lane[kLanes] = {};
