@@ -100,17 +100,85 @@ template <int NS, int L, class T>
 // of it (particles/candidate_block.hpp).
 inline constexpr int kSweepLanes = 8;
 
+// One chunk of kSweepLanes candidates from j0: x_i against candidate j in lane j - j0, its
+// pair's terms added into the lanes acc / mx. KL >= 0: columns KL..KL+D-1 hold the low parts of
+// the positions (x = hi + lo, float columns), and xl those of x_i; r_ij = (hi_i - hi_j) + (lo_i -
+// lo_j). kMasked: only candidates j < valid count; the others (read past a run's end) are
+// treated as outside the support whatever their positions.
+// The loop over lanes has no dependence between iterations, no reduction and no branch, so the
+// compiler vectorises it as it is (no `omp simd`): GCC 12 turned an `omp simd` reduction loop
+// around a pass's lambda into scalar code on AVX2 (docs/validation.md, "Vectorisation of the
+// passes"). The body reads values (the neighbour's columns and what its closure captured by
+// value) and returns its terms by value.
+template <int D, int K, int NS, bool kMax, int KL, bool kMasked, class T, class Body>
+[[gnu::always_inline]] inline void sweep_chunk(const WendlandC2<D>& kernel, const T (&xi)[3],
+                                               const T (&xl)[3], const T* const (&col)[16],
+                                               std::ptrdiff_t j0, std::ptrdiff_t valid, Body& body,
+                                               T (&acc)[NS > 0 ? NS : 1][kSweepLanes],
+                                               T (&mx)[kSweepLanes]) {
+  const T support2 = T(kernel.support2);
+  for (int l = 0; l < kSweepLanes; ++l) {
+    const std::ptrdiff_t j = j0 + l;
+    const Neighbour<K, T> nb = load_neighbour<K, T>(col, j);
+    PairGeometryT<T> g;
+    g.rx = xi[0] - nb.c[0];
+    g.ry = xi[1] - nb.c[1];
+    g.rz = D == 3 ? xi[2] - nb.c[D - 1] : T(0);
+    if constexpr (KL >= 0) {
+      g.rx += xl[0] - nb.c[KL];
+      g.ry += xl[1] - nb.c[KL + 1];
+      if constexpr (D == 3) g.rz += xl[2] - nb.c[KL + D - 1];
+    }
+    g.r2 = g.rx * g.rx + g.ry * g.ry + g.rz * g.rz;
+    bool in = (g.r2 < support2) & (g.r2 > T(0));  // `&`: both tests without a branch
+    // in 32 bits, the lanes' width in float (a 64-bit compare split the vectors)
+    if constexpr (kMasked) in = in & (l < static_cast<int>(valid - j0));
+    g.in = in ? T(1) : T(0);
+    g.r = std::sqrt(g.r2);
+    // Both kernel values are evaluated for every candidate (finite even for the far dummies)
+    // and then selected, so no operation sits under a condition.
+    const T f = kernel.f(g.r), w = kernel.w(g.r);
+    g.f = in ? f : T(0);
+    g.w = in ? w : T(0);
+    const PairSumsT<T> t = body(g, nb);
+    add_to_lane<NS>(acc, l, t);
+    if constexpr (kMax) mx[l] = mx[l] < t.max ? t.max : mx[l];
+  }
+}
+
+// The lane loop shared by the sweeps: `len` candidates (a multiple of kSweepLanes) whose columns
+// start at col[k], in chunks (sweep_chunk). kMask: only the first `valid` count.
+template <int D, int K, int NS, bool kMax, int KL, bool kMask, class T, class Body>
+[[gnu::always_inline]] inline void sweep_lanes(const WendlandC2<D>& kernel, const T (&xi)[3],
+                                               const T (&xl)[3], const T* const (&col)[16],
+                                               std::ptrdiff_t len, std::ptrdiff_t valid, Body& body,
+                                               T (&acc)[NS > 0 ? NS : 1][kSweepLanes],
+                                               T (&mx)[kSweepLanes]) {
+  for (std::ptrdiff_t j0 = 0; j0 < len; j0 += kSweepLanes)
+    sweep_chunk<D, K, NS, kMax, KL, kMask>(kernel, xi, xl, col, j0, valid, body, acc, mx);
+}
+
+// Adds the lanes in order: sum[k] += the total of slot k (formed in double), vmax = max(vmax,
+// lanes' max) when kMax.
+template <int NS, bool kMax, class T>
+[[gnu::always_inline]] inline void reduce_lanes(const T (&acc)[NS > 0 ? NS : 1][kSweepLanes],
+                                                const T (&mx)[kSweepLanes], double (&sum)[12],
+                                                double& vmax) {
+  for (int k = 0; k < NS; ++k) {
+    double s = 0.0;
+    for (int l = 0; l < kSweepLanes; ++l) s += acc[k][l];
+    sum[k] += s;
+  }
+  if constexpr (kMax) {
+    for (int l = 0; l < kSweepLanes; ++l) vmax = std::max(vmax, static_cast<double>(mx[l]));
+  }
+}
+
 // Sweeps x_i against the `len` candidates (a multiple of kSweepLanes) of a block whose columns
 // 0..D-1 are positions, and calls body(geometry, neighbour) -> PairSums for each.
 // sum[k] += slot k for the first NS slots; vmax = max(vmax, max) when kMax. xi_in: x_i in the
 // block's frame (relative to its origin). The lanes sum in T; their total is formed in double.
-// The inner loop over lanes has no dependence between iterations, no reduction and no branch,
-// so the compiler vectorises it as it is (no `omp simd`): GCC 12 turned an `omp simd` reduction
-// loop around a pass's lambda into scalar code on AVX2 (docs/validation.md, "Vectorisation of
-// the passes"). The body reads values (the neighbour's columns and what its closure captured by
-// value) and returns its terms by value.
-// KL >= 0: columns KL..KL+D-1 hold the low parts of the positions (x = hi + lo, float blocks),
-// and xi_lo those of x_i; r_ij = (hi_i - hi_j) + (lo_i - lo_j).
+// KL >= 0: the block's low parts of the positions (sweep_lanes), xi_lo_in those of x_i.
 template <int D, int K, int NS, bool kMax, int KL = -1, class T, class Body>
 [[gnu::always_inline]] inline void sweep_pairs(const WendlandC2<D>& kernel_in, const T xi_in[3],
                                                const std::array<std::vector<T>, K>& cols,
@@ -118,7 +186,6 @@ template <int D, int K, int NS, bool kMax, int KL = -1, class T, class Body>
                                                double& vmax, const T* xi_lo_in = nullptr) {
   static_assert(K <= 16 && NS <= 12, "sweep_pairs reads at most 16 columns into 12 sums");
   if (len == 0) return;  // an empty block (most fluid particles' wall block) costs no set-up
-  constexpr int L = kSweepLanes;
   const WendlandC2<D> kernel = kernel_in;  // local copies: nothing in the loop can alias them
   const T xi[3] = {xi_in[0], xi_in[1], D == 3 ? xi_in[D - 1] : T(0)};
   T xl[3] = {T(0), T(0), T(0)};
@@ -127,45 +194,50 @@ template <int D, int K, int NS, bool kMax, int KL = -1, class T, class Body>
   }
   const T* col[16] = {};
   for (int k = 0; k < K; ++k) col[k] = cols[k].data();
-  const T support2 = T(kernel.support2);
-  T acc[NS > 0 ? NS : 1][L] = {};
-  T mx[L];
-  for (int l = 0; l < L; ++l) mx[l] = PairSumsT<T>::lowest();
-  for (std::ptrdiff_t j0 = 0; j0 < len; j0 += L) {
-    for (int l = 0; l < L; ++l) {
-      const std::ptrdiff_t j = j0 + l;
-      const Neighbour<K, T> nb = load_neighbour<K, T>(col, j);
-      PairGeometryT<T> g;
-      g.rx = xi[0] - nb.c[0];
-      g.ry = xi[1] - nb.c[1];
-      g.rz = D == 3 ? xi[2] - nb.c[D - 1] : T(0);
-      if constexpr (KL >= 0) {
-        g.rx += xl[0] - nb.c[KL];
-        g.ry += xl[1] - nb.c[KL + 1];
-        if constexpr (D == 3) g.rz += xl[2] - nb.c[KL + D - 1];
-      }
-      g.r2 = g.rx * g.rx + g.ry * g.ry + g.rz * g.rz;
-      const bool in = (g.r2 < support2) & (g.r2 > T(0));  // `&`: both tests without a branch
-      g.in = in ? T(1) : T(0);
-      g.r = std::sqrt(g.r2);
-      // Both kernel values are evaluated for every candidate (finite even for the far dummies)
-      // and then selected, so no operation sits under a condition.
-      const T f = kernel.f(g.r), w = kernel.w(g.r);
-      g.f = in ? f : T(0);
-      g.w = in ? w : T(0);
-      const PairSumsT<T> t = body(g, nb);
-      add_to_lane<NS>(acc, l, t);
-      if constexpr (kMax) mx[l] = mx[l] < t.max ? t.max : mx[l];
-    }
+  T acc[NS > 0 ? NS : 1][kSweepLanes] = {};
+  T mx[kSweepLanes];
+  for (int l = 0; l < kSweepLanes; ++l) mx[l] = PairSumsT<T>::lowest();
+  sweep_lanes<D, K, NS, kMax, KL, false>(kernel, xi, xl, col, len, len, body, acc, mx);
+  reduce_lanes<NS, kMax>(acc, mx, sum, vmax);
+}
+
+// A stretch of candidates read in place: columns from index `begin`, `len` (a multiple of
+// kSweepLanes) of them read, of which the first `valid` count.
+struct Span {
+  std::ptrdiff_t begin = 0, len = 0, valid = 0;
+};
+
+// As sweep_pairs, over the candidates of `count` spans of columns read in place (cols[k] + begin;
+// particles/run_columns.hpp) instead of one block, each masked to its valid candidates. The
+// lanes run on across the spans: candidate j of a span adds into lane j % kSweepLanes, and the
+// lanes are added once at the end.
+template <int D, int K, int NS, bool kMax, int KL = -1, class T, class Body>
+[[gnu::always_inline]] inline void sweep_spans(const WendlandC2<D>& kernel_in, const T xi_in[3],
+                                               const T* const (&cols)[16], const Span* spans,
+                                               int count, Body body, double (&sum)[12],
+                                               double& vmax, const T* xi_lo_in = nullptr) {
+  static_assert(K <= 16 && NS <= 12, "sweep_spans reads at most 16 columns into 12 sums");
+  if (count == 0) return;
+  const WendlandC2<D> kernel = kernel_in;
+  const T xi[3] = {xi_in[0], xi_in[1], D == 3 ? xi_in[D - 1] : T(0)};
+  T xl[3] = {T(0), T(0), T(0)};
+  if constexpr (KL >= 0) {
+    for (int k = 0; k < D; ++k) xl[k] = xi_lo_in[k];
   }
-  for (int k = 0; k < NS; ++k) {
-    double s = 0.0;
-    for (int l = 0; l < L; ++l) s += acc[k][l];
-    sum[k] += s;
+  T acc[NS > 0 ? NS : 1][kSweepLanes] = {};
+  T mx[kSweepLanes];
+  for (int l = 0; l < kSweepLanes; ++l) mx[l] = PairSumsT<T>::lowest();
+  for (int s = 0; s < count; ++s) {
+    const T* col[16] = {};
+    for (int k = 0; k < K; ++k) col[k] = cols[k] + spans[s].begin;
+    if (spans[s].valid == spans[s].len)  // most spans: what they read past their run is far
+      sweep_lanes<D, K, NS, kMax, KL, false>(kernel, xi, xl, col, spans[s].len, spans[s].len, body,
+                                             acc, mx);
+    else
+      sweep_lanes<D, K, NS, kMax, KL, true>(kernel, xi, xl, col, spans[s].len, spans[s].valid, body,
+                                            acc, mx);
   }
-  if constexpr (kMax) {
-    for (int l = 0; l < L; ++l) vmax = std::max(vmax, static_cast<double>(mx[l]));
-  }
+  reduce_lanes<NS, kMax>(acc, mx, sum, vmax);
 }
 
 }  // namespace vrsph

@@ -151,6 +151,7 @@ class CellGrid {
     return starts_[(static_cast<std::size_t>(g) + 1) * ncell_total_];
   }
   double cell_size() const { return cell_size_; }
+  std::int64_t row_length() const { return n_[0]; }  // cells of a row of the table
   int reach() const { return reach_; }
   const Vec<D>& domain_min() const { return min_; }
   const Vec<D>& domain_max() const { return max_; }

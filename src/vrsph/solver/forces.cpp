@@ -1,11 +1,12 @@
 #include "vrsph/solver/forces.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <type_traits>
 
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/exec/sweep.hpp"
-#include "vrsph/particles/candidate_block.hpp"
+#include "vrsph/particles/run_columns.hpp"
 #include "vrsph/physics/continuity.hpp"
 #include "vrsph/physics/density_diffusion.hpp"
 #include "vrsph/physics/pressure.hpp"
@@ -14,78 +15,27 @@
 namespace vrsph {
 namespace {
 
-// Columns of the force pass's candidate blocks: positions, velocities, then the scalars.
 template <int D>
-struct ForceCol {
-  static constexpr int v = D, rho = 2 * D, p = rho + 1, vol = rho + 2, mass = rho + 3,
-                       wall_vol = rho + 4, count = rho + 5;
-};
-// Float blocks add the low parts of the positions as their last D columns (candidate_block.hpp).
-template <int D, class T>
-inline constexpr int kForceCols = ForceCol<D>::count + (std::is_same_v<T, float> ? D : 0);
-template <int D, class T>
-using ForceBlock = CandidateBlock<kForceCols<D, T>, T>;
-static_assert(kBlockPad % kSweepLanes == 0, "blocks must fill whole sweep lanes");
+using ForceCol = StateCol<D>;
+static_assert(kBlockPad % kSweepLanes == 0, "spans must fill whole sweep lanes");
 
-// The non-position columns a block of type T copies: LevelColumns' own in double, its float
-// copies (LevelColumns::f) in mixed precision. One list for the sources and for Self.
-template <class T, int D>
-struct StateView {
-  std::array<const T*, D> v{};
-  const T *rho_dev = nullptr, *p = nullptr, *vol = nullptr, *mass = nullptr, *wall_vol = nullptr;
-};
-template <class T, int D>
-StateView<T, D> state_view(const LevelColumns<D>& c) {
-  const auto& s = [&]() -> const auto& {
-    if constexpr (std::is_same_v<T, float>)
-      return c.f;
-    else
-      return c;
-  }
-  ();
-  StateView<T, D> w;
-  for (int k = 0; k < D; ++k) w.v[k] = s.v[k].data();
-  w.rho_dev = s.rho_dev.data(), w.p = s.p.data(), w.vol = s.vol.data(), w.mass = s.mass.data();
-  // Empty while the set holds no buffer particle: the walls' sum then reads vol, and the blocks
-  // copy no wall_vol column (a null source is skipped by CandidateBlock::gather).
-  w.wall_vol = s.wall_vol.empty() ? nullptr : s.wall_vol.data();
-  return w;
-}
-
-// Block sources besides the positions (the particle set's, LevelColumns::pos): the state
-// columns of type T into `state`.
-template <int D, class T, class S>
-void fill_sources(const LevelColumns<D>& c, S& state) {
-  using C = ForceCol<D>;
-  const StateView<T, D> w = state_view<T>(c);
-  for (int k = 0; k < D; ++k) state[C::v + k] = w.v[k];
-  state[C::rho] = w.rho_dev, state[C::p] = w.p, state[C::vol] = w.vol, state[C::mass] = w.mass;
-  state[C::wall_vol] = w.wall_vol;
-}
-
-// Dummies: far away, at rest, density rho0 (deviation 0: no division by zero), no volume, mass
-// or pressure.
-template <int D, class T>
-std::array<double, kForceCols<D, T>> force_pad() {
-  return position_pad<kForceCols<D, T>, D>(0.0);  // low parts of the positions: 0
-}
-
-// What one particle i reads of itself: its position in double (each block has its own frame),
-// the rest in the pass's type T.
+// What one particle i reads of itself, from the state columns of type T: its position in their
+// frame (hi + lo), the rest as stored.
 template <class T>
 struct Self {
-  double x[3] = {0.0, 0.0, 0.0};
+  T x[3] = {0, 0, 0}, x_lo[3] = {0, 0, 0};
   T v[3] = {0, 0, 0};
   T rho_dev = 0, p = 0;
   template <int D>
-  Self(const LevelColumns<D>& c, std::uint32_t i) {
-    const StateView<T, D> w = state_view<T>(c);
-    for (int k = 0; k < D; ++k) x[k] = c.pos[i][k], v[k] = w.v[k][i];
-    rho_dev = w.rho_dev[i], p = w.p[i];
+  Self(const StateRuns<D, T>& st, std::uint32_t i) {
+    using C = ForceCol<D>;
+    st.self(i, x, x_lo);
+    for (int k = 0; k < D; ++k) v[k] = st.col[C::v + k][i];
+    rho_dev = st.col[C::rho][i], p = st.col[C::p][i];
   }
 };
 
-// Sums of one particle over its blocks: drho/dt (s0), pairs (s1), acceleration (s2..s1+D; a 2D
+// Sums of one particle over its spans: drho/dt (s0), pairs (s1), acceleration (s2..s1+D; a 2D
 // sweep sums no zero z component), and the viscous time-step measure (max).
 struct ForceSums {
   double s[12] = {};
@@ -97,8 +47,7 @@ struct ForceSums {
 // T: the arithmetic of the pair terms (core/precision.hpp). Densities arrive as deviations
 // rho - rho0 (LevelColumns): rho = rho0 + deviation, exact in double.
 template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, class T>
-inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const ForceBlock<D, T>& blk,
-                        ForceSums& out) {
+inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
   using C = ForceCol<D>;
   const T rho0 = static_cast<T>(prm.eos.rho0);
   const T rho_dev_i = me.rho_dev, rho_i = rho0 + rho_dev_i, p_i = me.p;
@@ -111,7 +60,7 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const For
   const T inv_gamma = static_cast<T>(prm.density_diffusion.inv_gamma);
   const T up0 = static_cast<T>(prm.up[0]), up1 = static_cast<T>(prm.up[1]);
   const T up2 = static_cast<T>(prm.up[D - 1]);
-  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<kForceCols<D, T>, T>& nb) {
+  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<kStateCols<D, T>, T>& nb) {
     const T rho_dev_j = nb[C::rho], rho_j = rho0 + rho_dev_j, vol_j = nb[C::vol];
     const T m_j = nb[C::mass], rho_i_minus_j = rho_dev_i - rho_dev_j;
     const T ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
@@ -149,23 +98,27 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const For
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
-  T xi[3], xi_lo[3];
-  blk.frame(me.x, xi, xi_lo);
-  constexpr int KF = kForceCols<D, T>, KL = std::is_same_v<T, float> ? C::count : -1;
-  sweep_pairs<D, KF, 2 + D, true, KL>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
-                                      pair, out.s, out.max_visc_dt, xi_lo);
+  return pair;
+}
+// The fluid particle i against the spans of its stencil in the state columns st.
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, class T>
+inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const StateRuns<D, T>& st,
+                        const Span* spans, int count, ForceSums& out) {
+  constexpr int K = kStateCols<D, T>;
+  sweep_spans<D, K, 2 + D, true, StateRuns<D, T>::kLo>(prm.kernel, me.x, st.base, spans, count,
+                                                       fluid_pair<D, VM, DM, kWall>(prm, me), out.s,
+                                                       out.max_visc_dt, me.x_lo);
 }
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
 // kVol: the block column of the neighbours' volume, ForceCol::wall_vol where buffer particles
 // are present (their volume is 0 there), else ForceCol::vol.
 template <int D, int kVol, class T>
-inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const ForceBlock<D, T>& blk,
-                       ForceSums& out) {
+inline auto wall_pair(const SolverParams<D>& prm, const Self<T>& me) {
   using C = ForceCol<D>;
   const T rho_i = static_cast<T>(prm.eos.rho0) + me.rho_dev, eta2 = static_cast<T>(prm.eta2);
   const T vi0 = me.v[0], vi1 = me.v[1], vi2 = me.v[2];
-  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<kForceCols<D, T>, T>& nb) {
+  auto pair = [=](const PairGeometryT<T>& g, const Neighbour<kStateCols<D, T>, T>& nb) {
     const T ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
     const T uz = D == 3 ? vi2 - nb[C::v + D - 1] : T(0);
     const T vij_dot_rij = ux * g.rx + uy * g.ry + uz * g.rz;
@@ -176,18 +129,32 @@ inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const Forc
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
-  T xi[3], xi_lo[3];
-  blk.frame(me.x, xi, xi_lo);
-  constexpr int KF = kForceCols<D, T>, KL = std::is_same_v<T, float> ? C::count : -1;
-  sweep_pairs<D, KF, 2, true, KL>(prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len),
-                                  pair, out.s, out.max_visc_dt, xi_lo);
+  return pair;
+}
+template <int D, int kVol, class T>
+inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const StateRuns<D, T>& st,
+                       const Span* spans, int count, ForceSums& out) {
+  constexpr int K = kStateCols<D, T>;
+  sweep_spans<D, K, 2, true, StateRuns<D, T>::kLo>(prm.kernel, me.x, st.base, spans, count,
+                                                   wall_pair<D, kVol>(prm, me), out.s,
+                                                   out.max_visc_dt, me.x_lo);
 }
 
-// Per-thread scratch of the force pass and its statistics (ForceStats::merge across threads).
-template <int D, class T>
+// Per-thread scratch of the force pass: the spans of the cell last asked for (particles are
+// sorted by cell, so consecutive particles share them).
+template <int D>
 struct ForceScratch {
-  ForceBlock<D, T> fluid, wall;
+  std::int64_t cell = -1;
+  int nf = 0, nw = 0;
+  Span fluid[kMaxSpans<D>], wall[kMaxSpans<D>];
+  void spans_of(const CellGrid<D>& grid, std::int64_t c) {
+    if (c == cell) return;
+    cell = c;
+    nf = stencil_spans(grid, c, Group::fluid, fluid);
+    nw = stencil_spans(grid, c, Group::wall, wall);
+  }
 };
+// Statistics of the pass (ForceStats::merge across threads).
 struct ForceAcc {
   double max_visc_dt = -1e300, max_acc2 = 0.0;
   std::uint64_t pairs = 0;
@@ -208,42 +175,35 @@ Vec<D> acceleration(const ForceSums& s) {
 template <int D, ViscosityModel VM, DiffusionModel DM, class T>
 ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
                       const LevelColumns<D>& cols, const Vec<D>* extra_acc, bool buffer_reaction) {
+  if (grid.reach() > 4) throw std::invalid_argument("force pass: more than 4 cells per support");
   const auto& cells = grid.particle_cells();
-  constexpr int KF = kForceCols<D, T>;
-  std::array<const double*, KF> src{};
-  std::array<const T*, KF> rest{};
-  if constexpr (std::is_same_v<T, float>)
-    fill_sources<D, T>(cols, rest);
-  else
-    fill_sources<D, T>(cols, src);
-  const auto pad = force_pad<D, T>();
-  const auto* rest_ptr = std::is_same_v<T, float> ? &rest : nullptr;
-  const bool own_wall_vol = state_view<T>(cols).wall_vol != nullptr;
-  auto body = [&](std::int64_t ii, ForceScratch<D, T>& scratch, ForceAcc& acc) {
+  const StateRuns<D, T>& st = cols.template state_of<T>();
+  auto body = [&](std::int64_t ii, ForceScratch<D>& sc, ForceAcc& acc) {
     const auto i = static_cast<std::uint32_t>(ii);
-    const Self<T> me(cols, i);
+    const Self<T> me(st, i);
     ForceSums s;
-    const bool sweep = ps.kind[i] != Kind::buffer || buffer_reaction;
-    if (sweep) scratch.fluid.gather(cols.pos, src, pad, grid, cells[i], Groups::fluid, rest_ptr);
     if (ps.kind[i] == Kind::buffer) {
       // v and rho come from another level: acc is only the reaction of this level's fluid and
       // buffer neighbours (walls left out), from which the coupling measures the net force the
       // buffer exerts on the fluid. Buffer-buffer pairs cancel in that sum. Without it
       // (buffer_reaction false) a buffer particle needs no neighbour at all.
-      if (buffer_reaction) fluid_sweep<D, VM, DM, false>(prm, me, scratch.fluid, s);
+      if (buffer_reaction) {
+        sc.spans_of(grid, cells[i]);
+        fluid_sweep<D, VM, DM, false>(prm, me, st, sc.fluid, sc.nf, s);
+      }
       ps.acc[i] = acceleration<D>(s);
       ps.drho[i] = 0.0;
       return;
     }
+    sc.spans_of(grid, cells[i]);
     if (ps.kind[i] == Kind::wall) {
-      if (own_wall_vol)
-        wall_sweep<D, ForceCol<D>::wall_vol>(prm, me, scratch.fluid, s);
+      if (cols.has_wall_vol)
+        wall_sweep<D, ForceCol<D>::wall_vol>(prm, me, st, sc.fluid, sc.nf, s);
       else
-        wall_sweep<D, ForceCol<D>::vol>(prm, me, scratch.fluid, s);
+        wall_sweep<D, ForceCol<D>::vol>(prm, me, st, sc.fluid, sc.nf, s);
     } else {
-      fluid_sweep<D, VM, DM, false>(prm, me, scratch.fluid, s);
-      scratch.wall.gather(cols.pos, src, pad, grid, cells[i], Groups::wall, rest_ptr);
-      fluid_sweep<D, VM, DM, true>(prm, me, scratch.wall, s);
+      fluid_sweep<D, VM, DM, false>(prm, me, st, sc.fluid, sc.nf, s);
+      fluid_sweep<D, VM, DM, true>(prm, me, st, sc.wall, sc.nw, s);
     }
     Vec<D> a = acceleration<D>(s);
     if (extra_acc != nullptr && ps.kind[i] != Kind::wall) a += extra_acc[i];
@@ -253,7 +213,7 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     acc.max_visc_dt = std::max(acc.max_visc_dt, s.max_visc_dt);
     acc.pairs += static_cast<std::uint64_t>(s.s[1]);
   };
-  const ForceAcc total = exec::for_each_gather<ForceScratch<D, T>, ForceAcc>(
+  const ForceAcc total = exec::for_each_gather<ForceScratch<D>, ForceAcc>(
       static_cast<std::int64_t>(ps.size()), 512, body);
   return {total.max_visc_dt, std::sqrt(total.max_acc2), total.pairs};
 }
@@ -298,7 +258,7 @@ ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
                           ForceWorkspace<D>& ws, const Vec<D>* extra_acc, bool buffer_reaction) {
-  ws.pack(ps, prm.eos, prm.precision);
+  ws.pack(ps, grid, prm.eos, prm.precision);
   return compute_forces_packed(prm, ps, grid, ws, extra_acc, buffer_reaction);
 }
 

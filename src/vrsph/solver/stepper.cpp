@@ -10,7 +10,7 @@ namespace vrsph {
 
 template <int D>
 void pack_level(Level<D>& L) {
-  L.cols.pack(L.ps, L.prm.eos, L.prm.precision);
+  L.cols.pack(L.ps, L.grid, L.prm.eos, L.prm.precision);
 }
 
 template <int D>

@@ -51,9 +51,9 @@ void frame_of(const LevelColumns<D>& c, std::size_t i, const Block& blk, T (&hi)
 template <class T, int D>
 const T* volume_column(const LevelColumns<D>& c) {
   if constexpr (std::is_same_v<T, float>)
-    return c.f.svol.empty() ? c.f.vol.data() : c.f.svol.data();
+    return c.f.svol.empty() ? c.f.vol : c.f.svol.data();
   else
-    return c.svol.empty() ? c.vol.data() : c.svol.data();
+    return c.svol.empty() ? c.vol : c.svol.data();
 }
 
 }  // namespace vrsph

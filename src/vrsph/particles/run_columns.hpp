@@ -1,0 +1,108 @@
+// Candidate columns read in place: one copy of every column a pass reads, for all particles in
+// the grid's sorted order (particle i at index i), swept run by run (exec/sweep.hpp,
+// sweep_spans). It replaces copying each cell's candidates into a CandidateBlock
+// (particles/candidate_block.hpp), which cost about 3 pair evaluations per candidate copied and
+// a fifth of a 2D run (docs/validation.md, "Candidates read in place").
+//
+// A run [b, e) of a stencil is swept as the span [b, b + ceil8(e - b)) so that it fills whole
+// sweep lanes. The up to kBlockPad - 1 candidates read past its end either lie further along the
+// run's row, beyond the stencil's box of cells and so at least one support away, or are masked
+// out (stencil_spans). kBlockPad dummies after the last particle keep the reads inside the
+// columns.
+//
+// Positions are stored relative to one fixed frame (the grid's domain corner). With T = float
+// each coordinate is two floats, x - origin = hi + lo, as in the blocks: r_ij = (hi_i - hi_j) +
+// (lo_i - lo_j) keeps a double difference's accuracy until its final rounding.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <type_traits>
+#include <vector>
+
+#include "vrsph/core/vec.hpp"
+#include "vrsph/exec/sweep.hpp"
+#include "vrsph/particles/candidate_block.hpp"
+#include "vrsph/particles/cell_grid.hpp"
+
+namespace vrsph {
+
+// K columns of type T: 0..D-1 the positions (their high parts with T = float, whose low parts
+// are the last D columns, kLo..K-1), the rest whatever the pass reads.
+template <int K, int D, class T>
+struct RunColumns {
+  static_assert(K <= 16, "a sweep reads at most 16 columns");
+  static constexpr bool kSplit = !std::is_same_v<T, double>;
+  static constexpr int kLo = kSplit ? K - D : -1;  // first low-part column (-1: none)
+
+  std::array<std::vector<T>, K> col;
+  const T* base[16] = {};  // where each column starts (an absent column aliases another)
+  double origin[3] = {0.0, 0.0, 0.0};
+  std::uint32_t count = 0;  // particles (dummies excluded)
+
+  // Sizes the columns to the grid's particles after a sort and writes the dummies: pad[k] on
+  // column k, positions kFarAway. absent[k]: column k is not stored; it reads column alias[k].
+  void lay_out(const CellGrid<D>& grid, const std::array<double, K>& pad,
+               const std::array<bool, K>& absent = {}, const std::array<int, K>& alias = {}) {
+    count = grid.group_end(Group::wall);
+    for (int k = 0; k < D; ++k) origin[k] = grid.domain_min()[k];
+    for (int k = 0; k < K; ++k) {
+      if (absent[k]) {
+        std::vector<T>().swap(col[k]);
+        continue;
+      }
+      col[k].resize(count + kBlockPad);
+      const T v = k < D ? static_cast<T>(kFarAway) : static_cast<T>(pad[k]);
+      std::fill(col[k].begin() + count, col[k].end(), v);
+    }
+    for (int k = 0; k < K; ++k) base[k] = col[absent[k] ? alias[k] : k].data();
+  }
+
+  // Writes the position of particle q.
+  void put_position(std::size_t q, const Vec<D>& x) {
+    for (int k = 0; k < D; ++k) {
+      const double rel = x[k] - origin[k];
+      const T hi = static_cast<T>(rel);
+      col[k][q] = hi;
+      if constexpr (kSplit) col[kLo + k][q] = static_cast<T>(rel - static_cast<double>(hi));
+    }
+  }
+
+  // x_i in the columns' frame: hi[k] + lo[k] (lo = 0 with T = double).
+  void self(std::uint32_t q, T (&hi)[3], T (&lo)[3]) const {
+    for (int k = 0; k < 3; ++k) hi[k] = lo[k] = T(0);
+    for (int k = 0; k < D; ++k) {
+      hi[k] = col[k][q];
+      if constexpr (kSplit) lo[k] = col[kLo + k][q];
+    }
+  }
+};
+
+// The most spans a stencil has: (2 reach + 1)^(D - 1) rows, reach <= 4 (cells per support).
+template <int D>
+inline constexpr int kMaxSpans = D == 2 ? 9 : 81;
+
+// The spans of cell c's stencil in group g (CellGrid::for_each_run); returns their number
+// (empty runs are left out). `spans` holds kMaxSpans<D> entries. A span whose candidates read
+// past its run all lie further along the run's row of cells (beyond the stencil's box, so their
+// kernel terms are zero) counts every candidate it reads (valid = len): no mask. The others,
+// whose reads reach the next row or the group's end, are masked to the run.
+template <int D>
+int stencil_spans(const CellGrid<D>& grid, std::int64_t c, Group g, Span* spans) {
+  int n = 0;
+  const auto& cell = grid.particle_cells();
+  const std::uint32_t end = grid.group_end(g);
+  const auto row = static_cast<std::uint32_t>(grid.row_length());
+  grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) {
+    if (e <= b) return;
+    constexpr auto P = static_cast<std::uint32_t>(kBlockPad);
+    const std::uint32_t len = (e - b + P - 1) / P * P, last = b + len - 1;
+    const bool same_row = last < end && cell[last] / row == cell[e - 1] / row;
+    spans[n++] = {static_cast<std::ptrdiff_t>(b), static_cast<std::ptrdiff_t>(len),
+                  static_cast<std::ptrdiff_t>(same_row ? len : e - b)};
+  });
+  return n;
+}
+
+}  // namespace vrsph
