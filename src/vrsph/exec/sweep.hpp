@@ -1,9 +1,9 @@
-// The execution layer's vector loop: one particle i against a block of candidates
-// (particles/candidate_block.hpp). For each candidate j it forms the pair geometry of
+// The execution layer's vector loop: one particle i against its candidates, spans of columns read
+// in place (particles/run_columns.hpp). For each candidate j it forms the pair geometry of
 // core/kernel.hpp (r_ij, |r_ij|, W, F with grad_i W_ij = F r_ij, both zero outside the support and
 // for j = i) and hands it to the pass's body, which returns its pair terms. The loop has no
 // branch: candidates that do not interact get zero kernel values, so it vectorises on AVX2 and
-// AVX-512 alike. Sums run in fixed lanes, so their order depends on nothing but the block.
+// AVX-512 alike. Sums run in fixed lanes, so their order depends on nothing but the spans.
 #pragma once
 
 #include <algorithm>
@@ -96,8 +96,8 @@ template <int NS, int L, class T>
 
 // Lanes of the sweep: candidate j adds into lane j % kSweepLanes of every sum, and the lanes are
 // added in order at the end. The order of every sum is fixed by this constant, not by the vector
-// width, so AVX2, AVX-512 and scalar builds give the same bits. Blocks are padded to a multiple
-// of it (particles/candidate_block.hpp).
+// width, so AVX2, AVX-512 and scalar builds give the same bits. Spans are multiples of it
+// (particles/run_columns.hpp).
 inline constexpr int kSweepLanes = 8;
 
 // One chunk of kSweepLanes candidates from j0: x_i against candidate j in lane j - j0, its
@@ -174,43 +174,19 @@ template <int NS, bool kMax, class T>
   }
 }
 
-// Sweeps x_i against the `len` candidates (a multiple of kSweepLanes) of a block whose columns
-// 0..D-1 are positions, and calls body(geometry, neighbour) -> PairSums for each.
-// sum[k] += slot k for the first NS slots; vmax = max(vmax, max) when kMax. xi_in: x_i in the
-// block's frame (relative to its origin). The lanes sum in T; their total is formed in double.
-// KL >= 0: the block's low parts of the positions (sweep_lanes), xi_lo_in those of x_i.
-template <int D, int K, int NS, bool kMax, int KL = -1, class T, class Body>
-[[gnu::always_inline]] inline void sweep_pairs(const WendlandC2<D>& kernel_in, const T xi_in[3],
-                                               const std::array<std::vector<T>, K>& cols,
-                                               std::ptrdiff_t len, Body body, double (&sum)[12],
-                                               double& vmax, const T* xi_lo_in = nullptr) {
-  static_assert(K <= 16 && NS <= 12, "sweep_pairs reads at most 16 columns into 12 sums");
-  if (len == 0) return;  // an empty block (most fluid particles' wall block) costs no set-up
-  const WendlandC2<D> kernel = kernel_in;  // local copies: nothing in the loop can alias them
-  const T xi[3] = {xi_in[0], xi_in[1], D == 3 ? xi_in[D - 1] : T(0)};
-  T xl[3] = {T(0), T(0), T(0)};
-  if constexpr (KL >= 0) {
-    for (int k = 0; k < D; ++k) xl[k] = xi_lo_in[k];
-  }
-  const T* col[16] = {};
-  for (int k = 0; k < K; ++k) col[k] = cols[k].data();
-  T acc[NS > 0 ? NS : 1][kSweepLanes] = {};
-  T mx[kSweepLanes];
-  for (int l = 0; l < kSweepLanes; ++l) mx[l] = PairSumsT<T>::lowest();
-  sweep_lanes<D, K, NS, kMax, KL, false>(kernel, xi, xl, col, len, len, body, acc, mx);
-  reduce_lanes<NS, kMax>(acc, mx, sum, vmax);
-}
-
 // A stretch of candidates read in place: columns from index `begin`, `len` (a multiple of
 // kSweepLanes) of them read, of which the first `valid` count.
 struct Span {
   std::ptrdiff_t begin = 0, len = 0, valid = 0;
 };
 
-// As sweep_pairs, over the candidates of `count` spans of columns read in place (cols[k] + begin;
-// particles/run_columns.hpp) instead of one block, each masked to its valid candidates. The
-// lanes run on across the spans: candidate j of a span adds into lane j % kSweepLanes, and the
-// lanes are added once at the end.
+// Sweeps x_i against the candidates of `count` spans of columns read in place (cols[k] + begin,
+// particles/run_columns.hpp), columns 0..D-1 the positions, each span masked to its valid
+// candidates, and calls body(geometry, neighbour) -> PairSums for each. sum[k] += slot k for the
+// first NS slots; vmax = max(vmax, max) when kMax. xi_in: x_i in the columns' frame; KL >= 0:
+// the low parts of the positions (sweep_chunk), xi_lo_in those of x_i. The lanes run on across
+// the spans: candidate j of a span adds into lane j % kSweepLanes, and the lanes are added once
+// at the end, in T, their total formed in double.
 template <int D, int K, int NS, bool kMax, int KL = -1, class T, class Body>
 [[gnu::always_inline]] inline void sweep_spans(const WendlandC2<D>& kernel_in, const T xi_in[3],
                                                const T* const (&cols)[16], const Span* spans,

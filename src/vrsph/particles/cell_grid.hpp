@@ -107,10 +107,10 @@ class CellGrid {
     }
   }
 
-  // Candidate blocks (particles/candidate_block.hpp) serve `block_width` neighbouring cells of
-  // one row: the block of cell c starts at block_first(c), and for_each_block_run visits the
-  // runs of the union of the stencils of its cells, clipped to the row (the cells clipped off
-  // are ghost cells, which hold no particle).
+  // Blocks of `block_width` neighbouring cells of one row, over which pass 2's bound takes
+  // lambda's range (solver/normal_bound.hpp): the block of cell c starts at block_first(c), and
+  // for_each_block_run visits the runs of the union of the stencils of its cells, clipped to the
+  // row (the cells clipped off are ghost cells, which hold no particle).
   int block_width() const { return block_width_; }
   void set_block_width(int w) { block_width_ = w < 1 ? 1 : w; }
   std::int64_t block_first(std::int64_t c) const { return c - (c % n_[0]) % block_width_; }

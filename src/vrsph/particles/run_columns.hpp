@@ -1,7 +1,7 @@
 // Candidate columns read in place: one copy of every column a pass reads, for all particles in
 // the grid's sorted order (particle i at index i), swept run by run (exec/sweep.hpp,
-// sweep_spans). It replaces copying each cell's candidates into a CandidateBlock
-// (particles/candidate_block.hpp), which cost about 3 pair evaluations per candidate copied and
+// sweep_spans). It replaces copying each cell's candidates into a padded block
+// (the former candidate blocks), which cost about 3 pair evaluations per candidate copied and
 // a fifth of a 2D run (docs/validation.md, "Candidates read in place").
 //
 // A run [b, e) of a stencil is swept as the span [b, b + ceil8(e - b)) so that it fills whole
@@ -11,8 +11,9 @@
 // columns.
 //
 // Positions are stored relative to one fixed frame (the grid's domain corner). With T = float
-// each coordinate is two floats, x - origin = hi + lo, as in the blocks: r_ij = (hi_i - hi_j) +
-// (lo_i - lo_j) keeps a double difference's accuracy until its final rounding.
+// each coordinate is two floats, x - origin = hi + lo: r_ij = (hi_i - hi_j) + (lo_i - lo_j) keeps
+// a double difference's accuracy until its final rounding (float hi alone left errors of about
+// 6e-7 r, which biased the pressure sums: docs/validation.md).
 #pragma once
 
 #include <algorithm>
@@ -23,10 +24,18 @@
 
 #include "vrsph/core/vec.hpp"
 #include "vrsph/exec/sweep.hpp"
-#include "vrsph/particles/candidate_block.hpp"
 #include "vrsph/particles/cell_grid.hpp"
 
 namespace vrsph {
+
+// Columns hold this many entries past the last particle, and spans are multiples of it.
+inline constexpr std::size_t kBlockPad = 8;
+static_assert(kBlockPad % kSweepLanes == 0, "spans must fill whole sweep lanes");
+// Coordinate of the entries past the last particle: outside the support of every real particle.
+inline constexpr double kFarAway = 1e15;
+
+// Which groups of the grid a pass reads: the fluid group (fluid and buffer), walls, or both.
+enum class Groups : int { fluid = 1, wall = 2, all = 3 };
 
 // K columns of type T: 0..D-1 the positions (their high parts with T = float, whose low parts
 // are the last D columns, kLo..K-1), the rest whatever the pass reads.

@@ -1,7 +1,6 @@
 // The state of one level's particles as separate contiguous columns (structure of arrays), packed
-// once per force evaluation: the force pass reads its columns in place, run by run
-// (particles/run_columns.hpp); the surface passes copy positions and volumes into candidate
-// blocks (particles/candidate_block.hpp).
+// once per force evaluation, in the grid's sorted order: every neighbour pass (forces and the
+// surface passes) reads them in place, run by run (particles/run_columns.hpp).
 #pragma once
 
 #include <algorithm>
@@ -24,8 +23,8 @@ namespace vrsph {
 // deviations rho - rho0); float columns add the low parts of the positions as their last D.
 template <int D>
 struct StateCol {
-  static constexpr int v = D, rho = 2 * D, p = rho + 1, vol = rho + 2, mass = rho + 3,
-                       wall_vol = rho + 4, count = rho + 5;
+  static constexpr int v = D, rho = 2 * D, p = rho + 1, vol = rho + 2, wall_vol = rho + 3,
+                       count = rho + 4;
 };
 template <int D, class T>
 inline constexpr int kStateCols = StateCol<D>::count + (std::is_same_v<T, float> ? D : 0);
@@ -42,13 +41,11 @@ struct LevelColumns {
   // wall's continuity sum sees (vol but 0 for buffer particles), is stored only while the set
   // holds buffer particles (else it reads vol).
   StateRuns<D, double> state;
-  // The volumes vol = m / rho by particle index that the surface passes' blocks read: the
-  // state's vol column after pack, geometry_vol after pack_geometry.
+  // The state's volume column vol = m / rho, which the surface passes read.
   const double* vol = nullptr;
-  std::vector<double> geometry_vol;
   // Weight omega_i in [0, 1] of each particle's volume and mass in every sum over neighbours
   // (vres/region.hpp, buffer_volume_weight), set by the coupling before each pack; empty: 1 for
-  // all. vol and mass below already carry it.
+  // all. The volumes below carry it (a pair's mass is vol_j rho_j: the weighted mass).
   std::vector<double> weight;
   // Surface fields across levels (solver/cross_level.hpp): the surface passes then read svol,
   // vol with 0 for buffer particles, which the other level's fluid replaces in their sums.
@@ -59,7 +56,7 @@ struct LevelColumns {
   struct Floats {
     StateRuns<D, float> state;
     const float* vol = nullptr;
-    std::vector<float> geometry_vol, svol;
+    std::vector<float> svol;
   } f;
   bool has_wall_vol = false;  // the state stores a wall_vol column (buffer particles present)
 
@@ -71,23 +68,16 @@ struct LevelColumns {
       return state;
   }
 
-  // Volumes only besides the positions (the surface passes' needs), from a read-only particle
-  // set: in float in mixed precision, in double otherwise.
-  void pack_geometry(const ParticleSet<D>& ps, Precision precision = Precision::double_precision) {
-    const std::size_t n = ps.size();
+  // The positions and volumes only (the surface passes' needs), from a read-only particle set
+  // sorted by `grid`: in float in mixed precision, in double otherwise.
+  void pack_geometry(const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                     Precision precision = Precision::double_precision) {
+    check_sorted(ps, grid);
     pos = ps.pos.data();
-    const bool floats = precision == Precision::mixed;
-    if (floats)
-      f.geometry_vol.resize(n), f.vol = f.geometry_vol.data();
+    if (precision == Precision::mixed)
+      f.vol = pack_as<float, true>(ps, grid, TaitEos{}, f.state, f.svol);
     else
-      geometry_vol.resize(n), vol = geometry_vol.data();
-    exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-      const double vol_i = weighted(i, ps.mass[i] / ps.rho[i]);
-      if (floats)
-        f.geometry_vol[i] = static_cast<float>(vol_i);
-      else
-        geometry_vol[i] = vol_i;
-    });
+      vol = pack_as<double, true>(ps, grid, TaitEos{}, state, svol);
   }
 
   // Copies the particle state, sorted by `grid` (its last sort), with the pressure from the EOS.
@@ -95,14 +85,13 @@ struct LevelColumns {
   // exact in float too.
   void pack(const ParticleSet<D>& ps, const CellGrid<D>& grid, const TaitEos& eos,
             Precision precision = Precision::double_precision) {
-    if (grid.group_end(Group::wall) != ps.size())
-      throw std::logic_error("LevelColumns::pack: the particles changed since the grid's sort");
+    check_sorted(ps, grid);
     pos = ps.pos.data();
     has_wall_vol = std::find(ps.kind.begin(), ps.kind.end(), Kind::buffer) != ps.kind.end();
     if (precision == Precision::mixed)
-      f.vol = pack_as<float>(ps, grid, eos, f.state, f.svol);
+      f.vol = pack_as<float, false>(ps, grid, eos, f.state, f.svol);
     else
-      vol = pack_as<double>(ps, grid, eos, state, svol);
+      vol = pack_as<double, false>(ps, grid, eos, state, svol);
   }
 
  private:
@@ -110,35 +99,45 @@ struct LevelColumns {
     return weight.empty() ? x : weight[static_cast<std::size_t>(i)] * x;
   }
 
-  // Returns the volume column.
-  template <class T>
+  static void check_sorted(const ParticleSet<D>& ps, const CellGrid<D>& grid) {
+    if (grid.group_end(Group::wall) != ps.size())
+      throw std::logic_error("LevelColumns: the particles changed since the grid's sort");
+  }
+
+  // Returns the volume column. kGeometry: the positions and volumes only (the other columns
+  // are not stored; they read the volumes).
+  template <class T, bool kGeometry>
   const T* pack_as(const ParticleSet<D>& ps, const CellGrid<D>& grid, const TaitEos& eos,
                    StateRuns<D, T>& st, std::vector<T>& surface_vol) {
     using C = StateCol<D>;
     constexpr int K = kStateCols<D, T>;
-    // Dummies: far away, at rest, density rho0 (deviation 0: no division by zero), no volume,
-    // mass or pressure.
+    // Dummies: far away, at rest, density rho0 (deviation 0: no division by zero), no volume or
+    // pressure.
     std::array<bool, K> absent{};
     std::array<int, K> alias{};
-    absent[C::wall_vol] = !has_wall_vol, alias[C::wall_vol] = C::vol;
+    absent[C::wall_vol] = !has_wall_vol || kGeometry, alias.fill(C::vol);
+    if constexpr (kGeometry) {
+      for (int k = C::v; k < C::count; ++k) absent[k] = k != C::vol;
+    }
     st.lay_out(grid, std::array<double, K>{}, absent, alias);
     const std::size_t n = ps.size();
-    const bool buffers = has_wall_vol;
+    const bool buffers = has_wall_vol && !kGeometry;
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       st.put_position(i, ps.pos[i]);
-      for (int k = 0; k < D; ++k) st.col[C::v + k][i] = static_cast<T>(ps.vel[i][k]);
       const double vol_i = weighted(i, ps.mass[i] / ps.rho[i]);
+      st.col[C::vol][i] = static_cast<T>(vol_i);
+      if constexpr (kGeometry) return;
+      for (int k = 0; k < D; ++k) st.col[C::v + k][i] = static_cast<T>(ps.vel[i][k]);
       // exact (Sterbenz) while rho0 / 2 <= rho <= 2 rho0
       st.col[C::rho][i] = static_cast<T>(ps.rho[i] - eos.rho0);
       st.col[C::p][i] = static_cast<T>(eos.pressure(ps.rho[i]));
-      st.col[C::vol][i] = static_cast<T>(vol_i);
-      st.col[C::mass][i] = static_cast<T>(weighted(i, ps.mass[i]));
       if (buffers)
         st.col[C::wall_vol][i] =
             static_cast<T>(wall_continuity_volume(vol_i, ps.kind[i] == Kind::buffer));
     });
     const T* vol_col = st.col[C::vol].data();
-    surface_vol.resize(surface_without_buffers ? n : 0);
+    // padded as the state's columns (particles/run_columns.hpp)
+    surface_vol.assign(surface_without_buffers ? n + kBlockPad : 0, T(0));
     if (surface_without_buffers) {
       exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
         surface_vol[i] = ps.kind[i] == Kind::buffer ? T(0) : vol_col[i];

@@ -62,7 +62,8 @@ inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
   const T up2 = static_cast<T>(prm.up[D - 1]);
   auto pair = [=](const PairGeometryT<T>& g, const Neighbour<kStateCols<D, T>, T>& nb) {
     const T rho_dev_j = nb[C::rho], rho_j = rho0 + rho_dev_j, vol_j = nb[C::vol];
-    const T m_j = nb[C::mass], rho_i_minus_j = rho_dev_i - rho_dev_j;
+    // the weighted mass omega_j m_j = V_j rho_j (solver/columns.hpp): no column of its own
+    const T m_j = vol_j * rho_j, rho_i_minus_j = rho_dev_i - rho_dev_j;
     const T ux = vi0 - nb[C::v], uy = vi1 - nb[C::v + 1];
     const T uz = D == 3 ? vi2 - nb[C::v + D - 1] : T(0);
     const T rij_dot_gradw = g.f * g.r2;

@@ -1,53 +1,64 @@
-// The candidate blocks of the surface passes (solver/surface_pass.cpp): which columns they hold,
-// the frame of a particle in one, and the volume column they read.
+// The candidates of the surface passes (solver/surface_pass.cpp): which columns they read, read in
+// place from the level's packed state and the pass's own columns (particles/run_columns.hpp), the
+// spans of a particle's stencil, and the volume column they read.
 #pragma once
 
 #include <array>
 #include <type_traits>
 
-#include "vrsph/particles/candidate_block.hpp"
+#include "vrsph/particles/run_columns.hpp"
 #include "vrsph/solver/columns.hpp"
 
 namespace vrsph {
 
-// The blocks of a surface pass in arithmetic type T (core/precision.hpp): the positions (D
-// columns), the pass's N other columns (volume, lambda, normal components), and in float the
-// positions' low parts (D columns, particles/candidate_block.hpp).
+// The columns of a surface pass in arithmetic type T (core/precision.hpp): the positions (D
+// columns, the state's), the pass's N other columns (volume, lambda, normal components), and in
+// float the positions' low parts (D columns, the state's). Every column is indexed by particle
+// and holds at least kBlockPad entries past the last particle (zeros, or far away for the
+// positions), which a span may read (particles/run_columns.hpp).
 template <int D, int N, class T>
-struct SurfaceBlock {
+struct SurfaceColumns {
   static constexpr bool kFloat = std::is_same_v<T, float>;
   static constexpr int K = D + N + (kFloat ? D : 0);
   static constexpr int KL = kFloat ? D + N : -1;  // first low-part column, or none
-  using Block = CandidateBlock<K, T>;
 
-  const Vec<D>* x = nullptr;           // the positions (the particle set's)
-  std::array<const double*, K> src{};  // the other columns in double
-  std::array<const T*, K> rest{};      // the other columns in float
-  std::array<double, K> pad = position_pad<K, D>();
+  const StateRuns<D, T>& state;
+  const T* base[16] = {};
 
-  SurfaceBlock(const LevelColumns<D>& c, std::array<const T*, N> extra) : x(c.pos) {
-    for (int k = 0; k < N; ++k) {
-      if constexpr (kFloat)
-        rest[D + k] = extra[k];
-      else
-        src[D + k] = extra[k];
+  SurfaceColumns(const LevelColumns<D>& c, std::array<const T*, N> extra)
+      : state(c.template state_of<T>()) {
+    for (int k = 0; k < D; ++k) base[k] = state.base[k];
+    for (int k = 0; k < N; ++k) base[D + k] = extra[k];
+    if constexpr (kFloat) {
+      for (int k = 0; k < D; ++k) base[KL + k] = state.base[StateRuns<D, T>::kLo + k];
     }
   }
-  void gather(Block& blk, const CellGrid<D>& grid, std::int64_t cell, Groups g) const {
-    blk.gather(x, src, pad, grid, cell, g, kFloat ? &rest : nullptr);
+  // x_i in the columns' frame, as hi + lo (lo 0 in double).
+  void self(std::size_t i, T (&hi)[3], T (&lo)[3]) const {
+    state.self(static_cast<std::uint32_t>(i), hi, lo);
   }
 };
 
-// x_i in block blk's frame, as hi + lo (lo unused in double).
-template <int D, class Block, class T>
-void frame_of(const LevelColumns<D>& c, std::size_t i, const Block& blk, T (&hi)[3], T (&lo)[3]) {
-  double x[3] = {0, 0, 0};
-  for (int d = 0; d < D; ++d) x[d] = c.pos[i][d];
-  blk.frame(x, hi, lo);
-}
+// The spans of the stencil of the cell last asked for, in the groups asked for (consecutive
+// particles share their cell).
+template <int D>
+struct StencilSpans {
+  std::int64_t cell = -1;
+  Groups groups = Groups::fluid;
+  int count = 0;
+  Span span[2 * kMaxSpans<D>];
+  void of(const CellGrid<D>& grid, std::int64_t c, Groups g) {
+    if (c == cell && g == groups) return;
+    cell = c, groups = g, count = 0;
+    if (static_cast<int>(g) & static_cast<int>(Groups::fluid))
+      count += stencil_spans(grid, c, Group::fluid, span + count);
+    if (static_cast<int>(g) & static_cast<int>(Groups::wall))
+      count += stencil_spans(grid, c, Group::wall, span + count);
+  }
+};
 
-// The volume column of the blocks: the level's float copy in mixed precision; the one without
-// buffer particles when the fields are summed across levels.
+// The volume column of the surface passes: the state's, in its type; the one without buffer
+// particles when the fields are summed across levels.
 template <class T, int D>
 const T* volume_column(const LevelColumns<D>& c) {
   if constexpr (std::is_same_v<T, float>)

@@ -5,7 +5,6 @@
 
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/exec/sweep.hpp"
-#include "vrsph/particles/candidate_block.hpp"
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/physics/surface_tension.hpp"
 #include "vrsph/solver/normal_bound.hpp"
@@ -23,7 +22,7 @@ constexpr int kChunk = 256;  // particles handed to a thread at a time
 // (surface tension on: pass 2 reads it; shifting alone does not).
 template <int D, class T, bool kGradW>
 struct Pass1Pair {
-  using S = SurfaceBlock<D, 1, T>;
+  using S = SurfaceColumns<D, 1, T>;
   static constexpr int kSums = (D == 3 ? 11 : 7) + (kGradW ? 1 : 0);
   PairSumsT<T> operator()(const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) const {
     PairSumsT<T> s;
@@ -50,12 +49,13 @@ struct Pass1Pair {
 };
 
 template <int D, class T, bool kGradW>
-void pass1_particle(const SolverParams<D>& prm, const typename SurfaceBlock<D, 1, T>::Block& blk,
-                    const T (&xi)[3], const T (&xi_lo)[3], double (&sum)[12]) {
+void pass1_particle(const SolverParams<D>& prm, const SurfaceColumns<D, 1, T>& src,
+                    const StencilSpans<D>& sp, const T (&xi)[3], const T (&xi_lo)[3],
+                    double (&sum)[12]) {
   using P = Pass1Pair<D, T, kGradW>;
   double unused = -1e300;
-  sweep_pairs<D, P::S::K, P::kSums, false, P::S::KL>(
-      prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), P{}, sum, unused, xi_lo);
+  sweep_spans<D, P::S::K, P::kSums, false, P::S::KL>(prm.kernel, xi, src.base, sp.span, sp.count,
+                                                     P{}, sum, unused, xi_lo);
 }
 
 // Pass 1's sums of particle x over the levels of `sources` with `kernel` (solver/cross_level.hpp;
@@ -90,7 +90,7 @@ template <int D, class T>
 void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
   sf.resize(ps.size());
-  using S = SurfaceBlock<D, 1, T>;
+  using S = SurfaceColumns<D, 1, T>;
   const S src(cols, {volume_column<T>(cols)});
   const double w0 = prm.kernel.w(0.0);
   const bool grad_w = prm.sigma > 0.0;  // read by pass 2 only
@@ -110,7 +110,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
     sf.shepard[i] = shepard_pair(vol_i, w_self) + s[6];  // self + neighbours
     if (grad_w) sf.grad_w[i] = s[D == 3 ? 11 : 7];
   };
-  auto body = [&](std::int64_t ii, typename S::Block& blk) {
+  auto body = [&](std::int64_t ii, StencilSpans<D>& sp) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] == Kind::wall) return;
     double s[12] = {};
@@ -121,18 +121,18 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
       finish(i, s, WendlandC2<D>(h_wide).w(0.0));
       return;
     }
-    src.gather(blk, grid, grid.particle_cells()[i], Groups::all);
+    sp.of(grid, grid.particle_cells()[i], Groups::all);
     T xi[3], xi_lo[3];
-    frame_of(cols, i, blk, xi, xi_lo);
+    src.self(i, xi, xi_lo);
     if (grad_w)
-      pass1_particle<D, T, true>(prm, blk, xi, xi_lo, s);
+      pass1_particle<D, T, true>(prm, src, sp, xi, xi_lo, s);
     else
-      pass1_particle<D, T, false>(prm, blk, xi, xi_lo, s);
+      pass1_particle<D, T, false>(prm, src, sp, xi, xi_lo, s);
     if (!sf.cross.empty())
       sf.cross_hit[i] = pass1_across<D, T>(grad_w, sf.cross, prm.kernel, ps.pos[i], false, s) > 0;
     finish(i, s, w0);
   };
-  exec::for_each_with<typename S::Block>(static_cast<std::int64_t>(ps.size()), kChunk, body);
+  exec::for_each_with<StencilSpans<D>>(static_cast<std::int64_t>(ps.size()), kChunk, body);
 }
 
 // Pass 2's pair term: (lambda_j - lambda_ref) V_j F_ij r_ij (physics/surface_tension.hpp).
@@ -165,17 +165,20 @@ template <int D, class T>
 void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                   const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
   sf.normal.assign(ps.size(), Vec<D>{});  // walls keep 0
-  const T* lambda_col = nullptr;
-  if constexpr (std::is_same_v<T, float>) {
-    sf.lambda_f.resize(ps.size());  // after the coupling has set the buffers' lambda
-    exec::for_each(static_cast<std::int64_t>(ps.size()),
-                   [&](std::int64_t i) { sf.lambda_f[i] = static_cast<float>(sf.lambda[i]); });
-    lambda_col = sf.lambda_f.data();
-  } else {
-    lambda_col = sf.lambda.data();
+  auto& lambda_padded = [&]() -> auto& {
+    if constexpr (std::is_same_v<T, float>)
+      return sf.lambda_f;
+    else
+      return sf.lambda_col;
   }
-  using S = SurfaceBlock<D, 2, T>;
-  using Scratch = NormalsScratch<typename S::Block>;
+  ();
+  // after the coupling has set the buffers' lambda; the padding reads 0
+  lambda_padded.assign(ps.size() + kBlockPad, T(0));
+  exec::for_each(static_cast<std::int64_t>(ps.size()),
+                 [&](std::int64_t i) { lambda_padded[i] = static_cast<T>(sf.lambda[i]); });
+  const T* lambda_col = lambda_padded.data();
+  using S = SurfaceColumns<D, 2, T>;
+  using Scratch = NormalsScratch<StencilSpans<D>>;
   const S src(cols, {volume_column<T>(cols), lambda_col});
   if (!sf.grad_w.empty()) sf.lambda_ranges.build(grid, lambda_col);
   auto body = [&](std::int64_t ii, Scratch& sc) {
@@ -198,16 +201,16 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
       sf.normal[i] = wide_normal<D, T, S::K>(sf, i, ps.pos[i], lambda_ref, h_wide, eps);
       return;
     }
-    auto& blk = sc.blk;
-    src.gather(blk, grid, cell, Groups::fluid);
+    auto& sp = sc.blk;
+    sp.of(grid, cell, Groups::fluid);
     T xi[3], xi_lo[3];
-    frame_of(cols, i, blk, xi, xi_lo);
+    src.self(i, xi, xi_lo);
     double s[12] = {}, unused = -1e300;
     auto pair = [=](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
       return LambdaGradientPair<D, T, S::K>{lambda_ref}(g, nb);
     };
-    sweep_pairs<D, S::K, D, false, S::KL>(
-        prm.kernel, xi, blk.col, static_cast<std::ptrdiff_t>(blk.len), pair, s, unused, xi_lo);
+    sweep_spans<D, S::K, D, false, S::KL>(prm.kernel, xi, src.base, sp.span, sp.count, pair, s,
+                                          unused, xi_lo);
     if (across) {
       cross_sums<D, S::K, D, T>(sf.cross, prm.kernel, ps.pos[i], false, &load_lambda<D, S::K, T>,
                                 pair, s);
@@ -222,12 +225,12 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
 // Pass 3 of particle i over its block (columns x, V, n): the curvature sums of
 // physics/surface_tension.hpp (kappa, a, b in s0..s2) over the neighbours that pass S_ij.
 template <int D, class T>
-CurvatureSums curvature_particle(const SolverParams<D>& prm,
-                                 const typename SurfaceBlock<D, D + 1, T>::Block* blk,
-                                 const T (&xi)[3], const T (&xi_lo)[3], const Vec<D, T>& n_i,
-                                 const Mat<D, T>& l_i, const std::vector<CrossSource<D>>* cross,
-                                 const Vec<D>& x_i, const WendlandC2<D>& kernel) {
-  using S = SurfaceBlock<D, D + 1, T>;
+CurvatureSums curvature_particle(const SolverParams<D>& prm, const SurfaceColumns<D, D + 1, T>& src,
+                                 const StencilSpans<D>* sp, const T (&xi)[3], const T (&xi_lo)[3],
+                                 const Vec<D, T>& n_i, const Mat<D, T>& l_i,
+                                 const std::vector<CrossSource<D>>* cross, const Vec<D>& x_i,
+                                 const WendlandC2<D>& kernel) {
+  using S = SurfaceColumns<D, D + 1, T>;
   auto pair = [=](const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) {
     PairSumsT<T> s;
     Vec<D, T> n_j, r_ij;
@@ -241,9 +244,9 @@ CurvatureSums curvature_particle(const SolverParams<D>& prm,
     return s;
   };
   double s[12] = {}, unused = -1e300;
-  if (blk != nullptr) {  // null: the wide kernel, over `cross` alone (its own level first)
-    sweep_pairs<D, S::K, 3, false, S::KL>(
-        prm.kernel, xi, blk->col, static_cast<std::ptrdiff_t>(blk->len), pair, s, unused, xi_lo);
+  if (sp != nullptr) {  // null: the wide kernel, over `cross` alone (its own level first)
+    sweep_spans<D, S::K, 3, false, S::KL>(prm.kernel, xi, src.base, sp->span, sp->count, pair, s,
+                                          unused, xi_lo);
   }
   if (cross != nullptr)
     cross_sums<D, S::K, 3, T>(*cross, kernel, x_i, false, &load_normal<D, S::K, T>, pair, s);
@@ -263,16 +266,16 @@ void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const 
       return sf.normal_col;
   }
   ();
-  for (int k = 0; k < D; ++k) normal_col[k].resize(ps.size());
+  for (int k = 0; k < D; ++k) normal_col[k].assign(ps.size() + kBlockPad, T(0));  // pads read 0
   exec::for_each(n, [&](std::int64_t i) {
     for (int k = 0; k < D; ++k) normal_col[k][i] = static_cast<T>(sf.normal[i][k]);
   });
-  using S = SurfaceBlock<D, D + 1, T>;
+  using S = SurfaceColumns<D, D + 1, T>;
   std::array<const T*, D + 1> extra{};
   extra[0] = volume_column<T>(cols);
   for (int k = 0; k < D; ++k) extra[k + 1] = normal_col[k].data();
   const S src(cols, extra);
-  auto body = [&](std::int64_t ii, typename S::Block& blk) {
+  auto body = [&](std::int64_t ii, StencilSpans<D>& sp) {
     const auto i = static_cast<std::size_t>(ii);
     sf.curvature[i] = 0.0;
     sf.acc_st[i] = Vec<D>{};
@@ -282,13 +285,14 @@ void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const 
     const double h_wide = sf.h_wide.empty() ? 0.0 : sf.h_wide[i];
     T xi[3] = {}, xi_lo[3] = {};
     if (h_wide == 0.0) {
-      src.gather(blk, grid, grid.particle_cells()[i], Groups::fluid);
-      frame_of(cols, i, blk, xi, xi_lo);
+      sp.of(grid, grid.particle_cells()[i], Groups::fluid);
+      src.self(i, xi, xi_lo);
     }
     const auto* sources = h_wide > 0.0 ? &sf.wide : (across ? &sf.cross : nullptr);
-    const CurvatureSums sums = curvature_particle<D, T>(
-        prm, h_wide > 0.0 ? nullptr : &blk, xi, xi_lo, vec_cast<T>(n_i), mat_cast<T>(sf.l_corr[i]),
-        sources, ps.pos[i], h_wide > 0.0 ? WendlandC2<D>(h_wide) : prm.kernel);
+    const CurvatureSums sums =
+        curvature_particle<D, T>(prm, src, h_wide > 0.0 ? nullptr : &sp, xi, xi_lo,
+                                 vec_cast<T>(n_i), mat_cast<T>(sf.l_corr[i]), sources, ps.pos[i],
+                                 h_wide > 0.0 ? WendlandC2<D>(h_wide) : prm.kernel);
     const SurfaceTensionParams& st = prm.surface_tension;
     const double kappa = st.curvature_correction ? corrected_curvature<D>(sums) : sums.kappa;
     sf.curvature[i] = kappa;
@@ -296,7 +300,7 @@ void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const 
     const double k_force = st.surface_offset ? curvature_at_surface<D>(kappa, prm.dp) : kappa;
     sf.acc_st[i] = csf_acceleration<D>(prm.sigma, k_force, n_i, delta, ps.rho[i]);
   };
-  exec::for_each_with<typename S::Block>(n, kChunk, body);
+  exec::for_each_with<StencilSpans<D>>(n, kChunk, body);
 }
 
 }  // namespace
@@ -311,7 +315,7 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
 template <int D>
 void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                   SurfaceFields<D>& sf) {
-  sf.own.pack_geometry(ps, prm.precision);
+  sf.own.pack_geometry(ps, grid, prm.precision);
   surface_sums(prm, ps, grid, sf.own, sf);
 }
 

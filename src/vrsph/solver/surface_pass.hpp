@@ -33,11 +33,13 @@ struct SurfaceFields {
   std::vector<Vec<D>> acc_st;     // surface-tension acceleration
 
   // The columns the passes read when called without a level's packed columns (filled by the
-  // four-argument surface_sums), and the normal as columns for the curvature pass's blocks.
+  // four-argument surface_sums), and lambda (pass 2) and the normal (pass 3) as columns for the
+  // passes' sweeps, padded as the packed state (particles/run_columns.hpp).
   LevelColumns<D> own;
+  std::vector<double> lambda_col;
   std::array<std::vector<double>, D> normal_col;
-  // The same in float for the blocks of the mixed precision (core/precision.hpp): lambda for
-  // pass 2 and the normal for pass 3 (pass 1 reads the level's float volumes).
+  // The same in float for the mixed precision (core/precision.hpp); pass 1 reads the level's
+  // float volumes.
   std::vector<float> lambda_f;
   std::array<std::vector<float>, D> normal_f;
   // Pass 2's scratch: lambda's range per cell and row of a block (solver/normal_bound.hpp).
