@@ -6,11 +6,12 @@ namespace vrsph {
 
 template <int D>
 void SurfaceFields<D>::resize(std::size_t n) {
-  lambda.assign(n, 0.0);
-  l_corr.assign(n, Mat<D>::identity());
-  grad_c.assign(n, Vec<D>{});
-  div_r.assign(n, 0.0);
-  shepard.assign(n, 0.0);
+  // sized only: pass 1 writes every entry, in parallel (walls their neutral values)
+  lambda.resize(n);
+  l_corr.resize(n);
+  grad_c.resize(n);
+  div_r.resize(n);
+  shepard.resize(n);
   normal.resize(n);  // sized only: held values stay, and passes 2 and 3 write every entry
   curvature.resize(n);
   acc_st.resize(n);

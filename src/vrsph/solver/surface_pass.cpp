@@ -94,7 +94,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   const S src(cols, {volume_column<T>(cols)});
   const double w0 = prm.kernel.w(0.0);
   const bool grad_w = prm.sigma > 0.0;  // read by pass 2 only
-  sf.grad_w.assign(grad_w ? ps.size() : 0, 0.0);
+  sf.grad_w.resize(grad_w ? ps.size() : 0);
   sf.cross_hit.assign(sf.cross.empty() ? 0 : ps.size(), 0);
   // The fields of particle i from its pass-1 slots; w_self = W(0) of its kernel.
   auto finish = [&](std::size_t i, const double(&s)[12], double w_self) {
@@ -112,7 +112,13 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   };
   auto body = [&](std::int64_t ii, StencilSpans<D>& sp) {
     const auto i = static_cast<std::size_t>(ii);
-    if (ps.kind[i] == Kind::wall) return;
+    if (ps.kind[i] == Kind::wall) {  // no fields of its own: neutral values
+      sf.lambda[i] = sf.div_r[i] = sf.shepard[i] = 0.0;
+      sf.l_corr[i] = Mat<D>::identity();
+      sf.grad_c[i] = Vec<D>{};
+      if (grad_w) sf.grad_w[i] = 0.0;
+      return;
+    }
     double s[12] = {};
     const double h_wide = sf.h_wide.empty() ? 0.0 : sf.h_wide[i];
     if (h_wide > 0.0) {  // the own level too through the wide kernel, not the blocks
