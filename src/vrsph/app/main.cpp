@@ -112,8 +112,9 @@ CLI::App* add_run_command(CLI::App& app, CliArgs& a) {
   run->add_option("--cells-per-support", a.cells,
                   "neighbour cells per 2h (1 full, 2 half; default 1 in 2D, 2 in 3D)")
       ->check(CLI::Range(1, 4));
-  run->add_option("--cells-per-block", a.block,
-                  "cells of a row over which surface pass 2 bounds lambda (default 1 in 2D, 2 in 3D)")
+  run->add_option(
+         "--cells-per-block", a.block,
+         "cells of a row over which surface pass 2 bounds lambda (default 1 in 2D, 2 in 3D)")
       ->check(CLI::Range(1, 8));
   run->add_option("--halt-after-output", a.halt_after,
                   "testing aid: stop abruptly right after writing snapshot K (as a kill would)")
@@ -146,8 +147,9 @@ CLI::App* add_bench_command(CLI::App& app, CliArgs& a) {
                    "neighbour cells per 2h (1 full, 2 half; default 1 in 2D, 2 in 3D)")
       ->check(CLI::Range(1, 4));
   bench
-      ->add_option("--cells-per-block", a.block,
-                   "cells of a row over which surface pass 2 bounds lambda (default 1 in 2D, 2 in 3D)")
+      ->add_option(
+          "--cells-per-block", a.block,
+          "cells of a row over which surface pass 2 bounds lambda (default 1 in 2D, 2 in 3D)")
       ->check(CLI::Range(1, 8));
   return bench;
 }
