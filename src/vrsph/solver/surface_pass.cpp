@@ -1,5 +1,6 @@
 #include "vrsph/solver/surface_pass.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -170,7 +171,7 @@ Vec<D> wide_normal(const SurfaceFields<D>& sf, std::size_t i, const Vec<D>& x, T
 template <int D, class T>
 void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                   const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
-  sf.normal.assign(ps.size(), Vec<D>{});  // walls keep 0
+  sf.normal.resize(ps.size());  // every entry written below (0 for walls and skipped particles)
   auto& lambda_padded = [&]() -> auto& {
     if constexpr (std::is_same_v<T, float>)
       return sf.lambda_f;
@@ -179,7 +180,9 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
   }
   ();
   // after the coupling has set the buffers' lambda; the padding reads 0
-  lambda_padded.assign(ps.size() + kBlockPad, T(0));
+  lambda_padded.resize(ps.size() + kBlockPad);
+  std::fill(lambda_padded.begin() + static_cast<std::ptrdiff_t>(ps.size()), lambda_padded.end(),
+            T(0));
   exec::for_each(static_cast<std::int64_t>(ps.size()),
                  [&](std::int64_t i) { lambda_padded[i] = static_cast<T>(sf.lambda[i]); });
   const T* lambda_col = lambda_padded.data();
@@ -189,6 +192,7 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
   if (!sf.grad_w.empty()) sf.lambda_ranges.build(grid, lambda_col);
   auto body = [&](std::int64_t ii, Scratch& sc) {
     const auto i = static_cast<std::size_t>(ii);
+    sf.normal[i] = Vec<D>{};
     if (ps.kind[i] == Kind::wall) return;
     const double lambda_i = sf.lambda[i];
     const bool difference = lambda_i >= prm.surface_tension.lambda_threshold;
@@ -272,7 +276,10 @@ void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const 
       return sf.normal_col;
   }
   ();
-  for (int k = 0; k < D; ++k) normal_col[k].assign(ps.size() + kBlockPad, T(0));  // pads read 0
+  for (int k = 0; k < D; ++k) {  // every entry written below; the padding reads 0
+    normal_col[k].resize(ps.size() + kBlockPad);
+    std::fill(normal_col[k].begin() + n, normal_col[k].end(), T(0));
+  }
   exec::for_each(n, [&](std::int64_t i) {
     for (int k = 0; k < D; ++k) normal_col[k][i] = static_cast<T>(sf.normal[i][k]);
   });
