@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "vrsph/exec/parallel.hpp"
 
@@ -127,6 +129,24 @@ void permute_into(const std::vector<T>& a, const std::vector<std::uint32_t>& per
   exec::for_each(static_cast<std::int64_t>(perm.size()),
                  [&](std::int64_t i) { scratch[i] = a[perm[i]]; });
 }
+
+// Gathers a through perm in place, by way of the storage of `room` (at least as many bytes):
+// element by element into room's bytes, then back into a. Saves a spare array of T.
+template <class T>
+void permute_through(std::vector<T>& a, const std::vector<std::uint32_t>& perm,
+                     std::vector<double>& room) {
+  static_assert(std::is_trivially_copyable_v<T> && sizeof(T) <= sizeof(double));
+  const std::size_t n = perm.size();
+  if (room.size() < n) room.resize(n);
+  auto* bytes = reinterpret_cast<unsigned char*>(room.data());
+  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+    std::memcpy(bytes + static_cast<std::size_t>(i) * sizeof(T), &a[perm[i]], sizeof(T));
+  });
+  a.resize(n);
+  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+    std::memcpy(&a[i], bytes + static_cast<std::size_t>(i) * sizeof(T), sizeof(T));
+  });
+}
 }  // namespace
 
 template <int D>
@@ -151,7 +171,8 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copie
   // array of its element type, and the two swap: the spare then holds the array's previous
   // storage, ready for the next array of that type. The spares of the vector and double arrays
   // are the storage of the derived arrays acc and drho, which every sort leaves to be
-  // recomputed, so only the id and kind arrays have spares of their own.
+  // recomputed; the id and kind arrays are gathered through the double spare's storage and
+  // copied back (permute_through), so they need no spare of their own (9 B per particle).
   using PS = ParticleSet<D>;
   spare_vec_.swap(ps.acc);  // lent for the sort; carry()'s spares wait in acc and drho meanwhile
   spare_f64_.swap(ps.drho);
@@ -161,10 +182,15 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copie
   PS::zip_fields(
       [&](std::string_view, FieldRole role, auto& a) {
         if (!gathered(role)) return;  // derived fields (acc, drho), dead copies: resized below
-        auto& spare = spare_for(a);
-        spare.resize(kept);
-        permute_into(a, perm_, spare);
-        a.swap(spare);
+        using T = typename std::decay_t<decltype(a)>::value_type;
+        if constexpr (std::is_same_v<T, std::uint64_t> || std::is_same_v<T, Kind>) {
+          permute_through(a, perm_, spare_f64_);  // ids and kinds
+        } else {
+          auto& spare = spare_for(a);
+          spare.resize(kept);
+          permute_into(a, perm_, spare);
+          a.swap(spare);
+        }
       },
       ps);
   spare_vec_.swap(ps.acc);  // acc and drho take the storage the gathers left over

@@ -200,14 +200,11 @@ class CellGrid {
   std::size_t sorted_count_ = 0;  // particles before the last sort (what carry() accepts)
   std::vector<std::uint32_t> dropped_;
   KeySort keysort_;
-  // Gather targets, one per element type (spare_for): of the sort and of carry(). For the vector
-  // and double arrays the sort swaps in the storage of the derived arrays acc and drho.
-  std::vector<std::uint64_t> spare_u64_;
-  std::vector<Kind> spare_kind_;
+  // Gather targets (spare_for): of the sort and of carry(), for the vector and double arrays.
+  // The sort swaps in the storage of the derived arrays acc and drho; it gathers the id and kind
+  // arrays through the double spare's storage and copies them back (no spare of their own).
   std::vector<Vec<D>> spare_vec_;
   std::vector<double> spare_f64_;
-  std::vector<std::uint64_t>& spare_for(const std::vector<std::uint64_t>&) { return spare_u64_; }
-  std::vector<Kind>& spare_for(const std::vector<Kind>&) { return spare_kind_; }
   std::vector<Vec<D>>& spare_for(const std::vector<Vec<D>>&) { return spare_vec_; }
   std::vector<double>& spare_for(const std::vector<double>&) { return spare_f64_; }
 };
