@@ -168,24 +168,29 @@ Vec<D> wide_normal(const SurfaceFields<D>& sf, std::size_t i, const Vec<D>& x, T
   return normal_from_lambda_gradient<D>(sf.l_corr[i] * sum, sf.lambda[i], eps, h);
 }
 
-template <int D, class T>
-void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
-                  const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
-  sf.normal.resize(ps.size());  // every entry written below (0 for walls and skipped particles)
-  auto& lambda_padded = [&]() -> auto& {
+// lambda of the n particles as a column of type T padded like the packed state (the padding
+// reads 0), after the coupling has set the buffers' lambda.
+template <class T, int D>
+const T* padded_lambda(SurfaceFields<D>& sf, std::size_t n) {
+  auto& col = [&]() -> auto& {
     if constexpr (std::is_same_v<T, float>)
       return sf.lambda_f;
     else
       return sf.lambda_col;
   }
   ();
-  // after the coupling has set the buffers' lambda; the padding reads 0
-  lambda_padded.resize(ps.size() + kBlockPad);
-  std::fill(lambda_padded.begin() + static_cast<std::ptrdiff_t>(ps.size()), lambda_padded.end(),
-            T(0));
-  exec::for_each(static_cast<std::int64_t>(ps.size()),
-                 [&](std::int64_t i) { lambda_padded[i] = static_cast<T>(sf.lambda[i]); });
-  const T* lambda_col = lambda_padded.data();
+  col.resize(n + kBlockPad);
+  std::fill(col.begin() + static_cast<std::ptrdiff_t>(n), col.end(), T(0));
+  exec::for_each(static_cast<std::int64_t>(n),
+                 [&](std::int64_t i) { col[i] = static_cast<T>(sf.lambda[i]); });
+  return col.data();
+}
+
+template <int D, class T>
+void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                  const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
+  sf.normal.resize(ps.size());  // every entry written below (0 for walls and skipped particles)
+  const T* lambda_col = padded_lambda<T>(sf, ps.size());
   using S = SurfaceColumns<D, 2, T>;
   using Scratch = NormalsScratch<StencilSpans<D>>;
   const S src(cols, {volume_column<T>(cols), lambda_col});
