@@ -50,10 +50,10 @@ struct RunColumns {
   double origin[3] = {0.0, 0.0, 0.0};
   std::uint32_t count = 0;  // particles (dummies excluded)
 
-  // Sizes the columns to the grid's particles after a sort and writes the dummies: pad[k] on
-  // column k, positions kFarAway. absent[k]: column k is not stored; it reads column alias[k].
-  void lay_out(const CellGrid<D>& grid, const std::array<double, K>& pad,
-               const std::array<bool, K>& absent = {}, const std::array<int, K>& alias = {}) {
+  // Sizes the columns to the grid's particles after a sort and writes the dummies: positions
+  // kFarAway, every other column 0. absent[k]: column k is not stored; it reads column alias[k].
+  void lay_out(const CellGrid<D>& grid, const std::array<bool, K>& absent = {},
+               const std::array<int, K>& alias = {}) {
     count = grid.group_end(Group::wall);
     for (int k = 0; k < D; ++k) origin[k] = grid.domain_min()[k];
     for (int k = 0; k < K; ++k) {
@@ -62,7 +62,7 @@ struct RunColumns {
         continue;
       }
       col[k].resize(count + kBlockPad);
-      const T v = k < D ? static_cast<T>(kFarAway) : static_cast<T>(pad[k]);
+      const T v = k < D ? static_cast<T>(kFarAway) : T(0);
       std::fill(col[k].begin() + count, col[k].end(), v);
     }
     for (int k = 0; k < K; ++k) base[k] = col[absent[k] ? alias[k] : k].data();
@@ -113,5 +113,23 @@ int stencil_spans(const CellGrid<D>& grid, std::int64_t c, Group g, Span* spans)
   });
   return n;
 }
+
+// The spans of the stencil of the cell last asked for, in the groups asked for (consecutive
+// particles share their cell).
+template <int D>
+struct StencilSpans {
+  std::int64_t cell = -1;
+  Groups groups = Groups::fluid;
+  int count = 0;
+  Span span[2 * kMaxSpans<D>];
+  void of(const CellGrid<D>& grid, std::int64_t c, Groups g) {
+    if (c == cell && g == groups) return;
+    cell = c, groups = g, count = 0;
+    if (static_cast<int>(g) & static_cast<int>(Groups::fluid))
+      count += stencil_spans(grid, c, Group::fluid, span + count);
+    if (static_cast<int>(g) & static_cast<int>(Groups::wall))
+      count += stencil_spans(grid, c, Group::wall, span + count);
+  }
+};
 
 }  // namespace vrsph

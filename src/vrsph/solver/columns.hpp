@@ -33,19 +33,14 @@ using StateRuns = RunColumns<kStateCols<D, T>, D, T>;
 
 template <int D>
 struct LevelColumns {
-  // The positions are not copied for the surface passes: their blocks read the particle set's
-  // own array, which no pass of the evaluation moves or resizes (set by pack and pack_geometry).
-  const Vec<D>* pos = nullptr;
   // The force pass's state in the grid's sorted order, columns read in place by runs, in double
   // or (mixed precision) in float; the other stays empty. Its wall_vol column, the volume a
   // wall's continuity sum sees (vol but 0 for buffer particles), is stored only while the set
   // holds buffer particles (else it reads vol).
   StateRuns<D, double> state;
-  // The state's volume column vol = m / rho, which the surface passes read.
-  const double* vol = nullptr;
   // Weight omega_i in [0, 1] of each particle's volume and mass in every sum over neighbours
   // (vres/region.hpp, buffer_volume_weight), set by the coupling before each pack; empty: 1 for
-  // all. The volumes below carry it (a pair's mass is vol_j rho_j: the weighted mass).
+  // all. The state's volumes carry it (a pair's mass is vol_j rho_j: the weighted mass).
   std::vector<double> weight;
   // Surface fields across levels (solver/cross_level.hpp): the surface passes then read svol,
   // vol with 0 for buffer particles, which the other level's fluid replaces in their sums.
@@ -55,7 +50,6 @@ struct LevelColumns {
   // while in mixed precision the double ones stay empty.
   struct Floats {
     StateRuns<D, float> state;
-    const float* vol = nullptr;
     std::vector<float> svol;
   } f;
   bool has_wall_vol = false;  // the state stores a wall_vol column (buffer particles present)
@@ -73,11 +67,10 @@ struct LevelColumns {
   void pack_geometry(const ParticleSet<D>& ps, const CellGrid<D>& grid,
                      Precision precision = Precision::double_precision) {
     check_sorted(ps, grid);
-    pos = ps.pos.data();
     if (precision == Precision::mixed)
-      f.vol = pack_as<float, true>(ps, grid, TaitEos{}, f.state, f.svol);
+      pack_as<float, true>(ps, grid, TaitEos{}, f.state, f.svol);
     else
-      vol = pack_as<double, true>(ps, grid, TaitEos{}, state, svol);
+      pack_as<double, true>(ps, grid, TaitEos{}, state, svol);
   }
 
   // Copies the particle state, sorted by `grid` (its last sort), with the pressure from the EOS.
@@ -86,12 +79,11 @@ struct LevelColumns {
   void pack(const ParticleSet<D>& ps, const CellGrid<D>& grid, const TaitEos& eos,
             Precision precision = Precision::double_precision) {
     check_sorted(ps, grid);
-    pos = ps.pos.data();
     has_wall_vol = std::find(ps.kind.begin(), ps.kind.end(), Kind::buffer) != ps.kind.end();
     if (precision == Precision::mixed)
-      f.vol = pack_as<float, false>(ps, grid, eos, f.state, f.svol);
+      pack_as<float, false>(ps, grid, eos, f.state, f.svol);
     else
-      vol = pack_as<double, false>(ps, grid, eos, state, svol);
+      pack_as<double, false>(ps, grid, eos, state, svol);
   }
 
  private:
@@ -104,11 +96,11 @@ struct LevelColumns {
       throw std::logic_error("LevelColumns: the particles changed since the grid's sort");
   }
 
-  // Returns the volume column. kGeometry: the positions and volumes only (the other columns
-  // are not stored; they read the volumes).
+  // kGeometry: the positions and volumes only (the other columns are not stored; they read the
+  // volumes).
   template <class T, bool kGeometry>
-  const T* pack_as(const ParticleSet<D>& ps, const CellGrid<D>& grid, const TaitEos& eos,
-                   StateRuns<D, T>& st, std::vector<T>& surface_vol) {
+  void pack_as(const ParticleSet<D>& ps, const CellGrid<D>& grid, const TaitEos& eos,
+               StateRuns<D, T>& st, std::vector<T>& surface_vol) {
     using C = StateCol<D>;
     constexpr int K = kStateCols<D, T>;
     // Dummies: far away, at rest, density rho0 (deviation 0: no division by zero), no volume or
@@ -119,7 +111,7 @@ struct LevelColumns {
     if constexpr (kGeometry) {
       for (int k = C::v; k < C::count; ++k) absent[k] = k != C::vol;
     }
-    st.lay_out(grid, std::array<double, K>{}, absent, alias);
+    st.lay_out(grid, absent, alias);
     const std::size_t n = ps.size();
     const bool buffers = has_wall_vol && !kGeometry;
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
@@ -143,7 +135,6 @@ struct LevelColumns {
         surface_vol[i] = ps.kind[i] == Kind::buffer ? T(0) : vol_col[i];
       });
     }
-    return vol_col;
   }
 };
 

@@ -145,14 +145,10 @@ inline void wall_sweep(const SolverParams<D>& prm, const Self<T>& me, const Stat
 // sorted by cell, so consecutive particles share them).
 template <int D>
 struct ForceScratch {
-  std::int64_t cell = -1;
-  int nf = 0, nw = 0;
-  Span fluid[kMaxSpans<D>], wall[kMaxSpans<D>];
+  StencilSpans<D> fluid, wall;
   void spans_of(const CellGrid<D>& grid, std::int64_t c) {
-    if (c == cell) return;
-    cell = c;
-    nf = stencil_spans(grid, c, Group::fluid, fluid);
-    nw = stencil_spans(grid, c, Group::wall, wall);
+    fluid.of(grid, c, Groups::fluid);
+    wall.of(grid, c, Groups::wall);
   }
 };
 // Statistics of the pass (ForceStats::merge across threads).
@@ -190,7 +186,7 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       // (buffer_reaction false) a buffer particle needs no neighbour at all.
       if (buffer_reaction) {
         sc.spans_of(grid, cells[i]);
-        fluid_sweep<D, VM, DM, false>(prm, me, st, sc.fluid, sc.nf, s);
+        fluid_sweep<D, VM, DM, false>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
       }
       ps.acc[i] = acceleration<D>(s);
       ps.drho[i] = 0.0;
@@ -199,12 +195,12 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
     sc.spans_of(grid, cells[i]);
     if (ps.kind[i] == Kind::wall) {
       if (cols.has_wall_vol)
-        wall_sweep<D, ForceCol<D>::wall_vol>(prm, me, st, sc.fluid, sc.nf, s);
+        wall_sweep<D, ForceCol<D>::wall_vol>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
       else
-        wall_sweep<D, ForceCol<D>::vol>(prm, me, st, sc.fluid, sc.nf, s);
+        wall_sweep<D, ForceCol<D>::vol>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
     } else {
-      fluid_sweep<D, VM, DM, false>(prm, me, st, sc.fluid, sc.nf, s);
-      fluid_sweep<D, VM, DM, true>(prm, me, st, sc.wall, sc.nw, s);
+      fluid_sweep<D, VM, DM, false>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
+      fluid_sweep<D, VM, DM, true>(prm, me, st, sc.wall.span, sc.wall.count, s);
     }
     Vec<D> a = acceleration<D>(s);
     if (extra_acc != nullptr && ps.kind[i] != Kind::wall) a += extra_acc[i];

@@ -26,9 +26,9 @@ namespace vrsph {
 // range over the cells of its row that the block spans; a block's range is then the extreme of
 // its 2 reach + 1 rows (2D; squared in 3D). One running min and max over the block's some 50
 // candidates was a chain of dependent instructions that cost a third of the normals pass.
-template <class Block>
+template <class Spans>
 struct NormalsScratch {
-  Block blk;
+  Spans spans;
   std::int64_t range_of = -1;  // the block whose candidates lo and hi span
   double lo = 0, hi = 0;
 };
@@ -63,9 +63,9 @@ struct BlockRanges {
 
 // Sets sc.lo, sc.hi to the range of the value of r over the fluid candidates of the block of
 // `cell`, unless sc already holds that block's.
-template <int D, class Block>
+template <int D, class Spans>
 void lambda_range(const CellGrid<D>& grid, std::int64_t cell, const BlockRanges& r,
-                  NormalsScratch<Block>& sc) {
+                  NormalsScratch<Spans>& sc) {
   const std::int64_t b = grid.block_first(cell);
   if (b == sc.range_of) return;
   sc.range_of = b;

@@ -1,6 +1,6 @@
 // The candidates of the surface passes (solver/surface_pass.cpp): which columns they read, read in
-// place from the level's packed state and the pass's own columns (particles/run_columns.hpp), the
-// spans of a particle's stencil, and the volume column they read.
+// place from the level's packed state and the pass's own columns (particles/run_columns.hpp), and
+// the volume column they read.
 #pragma once
 
 #include <array>
@@ -39,32 +39,17 @@ struct SurfaceColumns {
   }
 };
 
-// The spans of the stencil of the cell last asked for, in the groups asked for (consecutive
-// particles share their cell).
-template <int D>
-struct StencilSpans {
-  std::int64_t cell = -1;
-  Groups groups = Groups::fluid;
-  int count = 0;
-  Span span[2 * kMaxSpans<D>];
-  void of(const CellGrid<D>& grid, std::int64_t c, Groups g) {
-    if (c == cell && g == groups) return;
-    cell = c, groups = g, count = 0;
-    if (static_cast<int>(g) & static_cast<int>(Groups::fluid))
-      count += stencil_spans(grid, c, Group::fluid, span + count);
-    if (static_cast<int>(g) & static_cast<int>(Groups::wall))
-      count += stencil_spans(grid, c, Group::wall, span + count);
-  }
-};
-
 // The volume column of the surface passes: the state's, in its type; the one without buffer
 // particles when the fields are summed across levels.
 template <class T, int D>
 const T* volume_column(const LevelColumns<D>& c) {
-  if constexpr (std::is_same_v<T, float>)
-    return c.f.svol.empty() ? c.f.vol : c.f.svol.data();
-  else
-    return c.svol.empty() ? c.vol : c.svol.data();
+  const std::vector<T>& svol = [&]() -> const std::vector<T>& {
+    if constexpr (std::is_same_v<T, float>)
+      return c.f.svol;
+    else
+      return c.svol;
+  }();
+  return svol.empty() ? c.template state_of<T>().col[StateCol<D>::vol].data() : svol.data();
 }
 
 }  // namespace vrsph

@@ -216,7 +216,7 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
       sf.normal[i] = wide_normal<D, T, S::K>(sf, i, ps.pos[i], lambda_ref, h_wide, eps);
       return;
     }
-    auto& sp = sc.blk;
+    auto& sp = sc.spans;
     sp.of(grid, cell, Groups::fluid);
     T xi[3], xi_lo[3];
     src.self(i, xi, xi_lo);
