@@ -172,6 +172,8 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
       r.opt_bool("vres_surface_across_levels").value_or(spec.vres_surface_across_levels);
   spec.vres_shepard_fill =
       r.opt_number("vres_shepard_fill", kShepardFill).value_or(spec.vres_shepard_fill);
+  spec.vres_buffer_spacing =
+      r.opt_number("vres_buffer_spacing", kBufferSpacing).value_or(spec.vres_buffer_spacing);
   spec.vres_buffer_surface =
       r.opt_enum("vres_buffer_surface", kBufferSurfaceNames).value_or(spec.vres_buffer_surface);
   n.hydrostatic_initial_density =

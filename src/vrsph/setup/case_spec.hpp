@@ -133,7 +133,8 @@ struct CaseSpec {
   double vres_buffer_ramp = 0.0;        // dp: buffer volumes ramp to 0 over this at the outer edge
   bool vres_surface_across_levels = false;  // surface passes over the fluid of both levels
   BufferSurface vres_buffer_surface = BufferSurface::edge;  // buffers' lambda and normal
-  double vres_shepard_fill = 0.0;  // below this donor fill, buffers take Shepard averages
+  double vres_shepard_fill = 0.0;    // below this donor fill, buffers take Shepard averages
+  double vres_buffer_spacing = 0.0;  // buffer particles kept this many dp apart (0: off)
 
   // geometry
   std::vector<FluidBlock> fluid_blocks;

@@ -77,7 +77,7 @@ Simulation<D>::Simulation(CaseSpec& spec, CellLayout cells) : spec_(spec) {
       spec.vres_conserve_momentum,     spec.numerics.surface_tension.zero_net_force,
       spec.vres_buffer_fill_min,       spec.vres_buffer_ramp,
       spec.vres_surface_across_levels, spec.vres_buffer_surface,
-      spec.vres_shepard_fill};
+      spec.vres_shepard_fill,          spec.vres_buffer_spacing};
   coupling_ = LevelCoupling<D>(std::move(links), opt);
 
   // One domain for all levels, from the level-0 particles.

@@ -26,6 +26,7 @@ struct CouplingOptions {
   bool surface_across_levels = false;   // numerics.vres_surface_across_levels
   BufferSurface buffer_surface = BufferSurface::edge;  // numerics.vres_buffer_surface
   double shepard_fill = 0.0;                           // numerics.vres_shepard_fill
+  double buffer_spacing = 0.0;  // numerics.vres_buffer_spacing, in dp of each level
 };
 
 template <int D>
