@@ -64,5 +64,63 @@ TEST(VresAcross, LambdaAcrossTheFaceAtTheStart) {
   EXPECT_LT(on.worst, 0.07);
 }
 
+// Issue #20 item 6: lambda along the face of the static drop (droplet_vr_2d as shipped, half
+// resolution, the face x = 0 through the drop's centre) is continuous: the largest difference
+// between neighbouring fluid particles of the two levels is no larger than between neighbours
+// within either level (pairs closer than 1.5 dp_coarse, inside R - 3 h_coarse of the centre of
+// mass, where lambda is not a free-surface value). Measured at 0.02 s: face 0.0331 (84 pairs),
+// within a level 0.0426. Later in the run the face's jumps reach 1.2x the levels' (0.036 against
+// 0.029 at 0.2 s; docs/validation.md, "The rings + Shepard VR drop against the tests of item
+// 6"), which this test, kept short, does not cover.
+TEST(VresAcross, LambdaIsContinuousAcrossTheFace) {
+  CaseSpec spec = load_case("droplet_vr_2d.toml", {"resolution.dp=2e-4", "case.end_time=0.02"});
+  Simulation<2> sim(spec);
+  while (sim.time() < spec.end_time - 1e-12) sim.step();
+  sim.update_surface_fields();
+  const double dp = 2e-4, h = 1.3 * dp;
+  Vec<2> centre{};
+  double mass = 0.0;
+  for (std::size_t l = 0; l < 2; ++l) {
+    const ParticleSet<2>& ps = sim.level(l).ps;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (ps.kind[i] != Kind::fluid) continue;
+      centre += ps.pos[i] * ps.mass[i];
+      mass += ps.mass[i];
+    }
+  }
+  centre = centre * (1.0 / mass);
+  struct P {
+    Vec<2> x;
+    double lambda;
+    std::size_t level;
+  };
+  std::vector<P> inner;
+  for (std::size_t l = 0; l < 2; ++l) {
+    const ParticleSet<2>& ps = sim.level(l).ps;
+    const SurfaceFields<2>& sf = sim.surface_fields(l);
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (ps.kind[i] == Kind::fluid && norm(ps.pos[i] - centre) < 0.002 - 3 * h)
+        inner.push_back({ps.pos[i], sf.lambda[i], l});
+  }
+  double face = 0.0, within = 0.0;
+  std::size_t face_pairs = 0;
+  for (std::size_t a = 0; a < inner.size(); ++a)
+    for (std::size_t b = a + 1; b < inner.size(); ++b) {
+      if (norm(inner[a].x - inner[b].x) >= 1.5 * dp) continue;
+      const double jump = std::abs(inner[a].lambda - inner[b].lambda);
+      if (inner[a].level != inner[b].level) {
+        face = std::max(face, jump);
+        ++face_pairs;
+      } else {
+        within = std::max(within, jump);
+      }
+    }
+  std::printf("lambda jumps at 0.02 s: across the face %.4f (%zu pairs), within a level %.4f\n",
+              face, face_pairs, within);
+  EXPECT_GT(face_pairs, 50u);
+  EXPECT_GT(within, 0.0);
+  EXPECT_LE(face, within);
+}
+
 }  // namespace
 }  // namespace vrsph
