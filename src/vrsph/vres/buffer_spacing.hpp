@@ -59,13 +59,18 @@ std::size_t space_buffers(Level<D>& L, double s, std::vector<Vec<D>>& shift) {
     const auto i = static_cast<std::size_t>(ii);
     shift[i] = ps.kind[i] == Kind::buffer ? buffer_spacing_shift(L, i, d_min) : Vec<D>{};
   });
-  std::size_t moved = 0;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (norm2(shift[i]) == 0.0) continue;
-    ps.pos[i] += shift[i];
-    ++moved;
-  }
-  return moved;
+  struct None {};
+  struct Moved {
+    std::size_t n = 0;
+    void merge(const Moved& o) { n += o.n; }
+  };
+  const Moved moved = exec::for_each_gather<None, Moved>(static_cast<std::int64_t>(ps.size()), 1024,
+                                                         [&](std::int64_t i, None&, Moved& acc) {
+                                                           if (norm2(shift[i]) == 0.0) return;
+                                                           ps.pos[i] += shift[i];
+                                                           ++acc.n;
+                                                         });
+  return moved.n;
 }
 
 }  // namespace vrsph
