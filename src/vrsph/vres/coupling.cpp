@@ -93,9 +93,8 @@ template <int D>
 void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
   ParticleSet<D>& ps = L.ps;
   std::vector<std::uint8_t> keep(ps.size(), 1);
-  std::size_t removed = 0;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.kind[i] == Kind::wall) continue;
+  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
+    if (ps.kind[i] == Kind::wall) return;
     switch (link.region.classify(ps.pos[i]).zone) {
       case Zone::fluid:
         ps.kind[i] = Kind::fluid;
@@ -105,10 +104,14 @@ void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
         break;
       case Zone::outside:
         keep[i] = 0;
-        ++removed;
-        tally.deleted_mass += ps.mass[i];
         break;
     }
+  });
+  std::size_t removed = 0;  // the deleted mass summed in index order, as on one thread
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (keep[i]) continue;
+    ++removed;
+    tally.deleted_mass += ps.mass[i];
   }
   if (removed == 0) return;
   tally.deleted += removed;
