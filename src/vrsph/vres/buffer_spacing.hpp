@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "vrsph/exec/parallel.hpp"
@@ -48,13 +49,15 @@ Vec<D> buffer_spacing_shift(const Level<D>& L, std::size_t i, double d_min) {
 
 // Moves the buffer particles of level L apart (s in dp of the level; s <= 0: nothing). Returns
 // how many moved. Call while the level's grid matches its particles (before any creation or
-// deletion since the last sort); `shift` is scratch.
+// deletion since the last sort).
 template <int D>
-std::size_t space_buffers(Level<D>& L, double s, std::vector<Vec<D>>& shift) {
+std::size_t space_buffers(Level<D>& L, double s) {
   ParticleSet<D>& ps = L.ps;
-  if (s <= 0.0 || L.grid.particle_cells().size() != ps.size()) return 0;
+  if (s <= 0.0) return 0;
+  if (L.grid.particle_cells().size() != ps.size())
+    throw std::logic_error("space_buffers: the particles changed since the grid's sort");
   const double d_min = s * L.prm.dp;
-  shift.resize(ps.size());
+  std::vector<Vec<D>> shift(ps.size());
   exec::for_each_dynamic(static_cast<std::int64_t>(ps.size()), 256, [&](std::int64_t ii) {
     const auto i = static_cast<std::size_t>(ii);
     shift[i] = ps.kind[i] == Kind::buffer ? buffer_spacing_shift(L, i, d_min) : Vec<D>{};

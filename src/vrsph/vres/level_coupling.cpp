@@ -191,8 +191,7 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  std::vector<Vec<D>> shift;
-  for (Level<D>& L : levels) space_buffers(L, opt_.buffer_spacing, shift);
+  for (Level<D>& L : levels) space_buffers(L, opt_.buffer_spacing);
   accumulate_and_create(levels, links_, dt, entry_depth(), donor_rule(), next_id, tally);
   for (std::size_t l = 0; l < levels.size(); ++l) update_kinds(levels[l], links_[l], tally);
   sort();
@@ -233,8 +232,7 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  std::vector<Vec<D>> shift;
-  space_buffers(levels[l], opt_.buffer_spacing, shift);
+  space_buffers(levels[l], opt_.buffer_spacing);
   accumulate_and_create_level(levels, links_[l], l, dt, donor_a, entry_depth(), donor_rule(),
                               next_id, tally);
   update_kinds(levels[l], links_[l], tally);
