@@ -180,7 +180,7 @@ std::array<double, 2> side_pressures(const Simulation<2>& sim, double radius) {
   for (std::size_t l = 0; l < 2; ++l) {
     const auto& ps = sim.level(l).ps;
     for (std::size_t i = 0; i < ps.size(); ++i)
-      if (ps.kind[i] == Kind::fluid) c += ps.mass[i] * ps.pos[i], m += ps.mass[i];
+      if (ps.kind[i] == Kind::fluid) c += ps.mass_of(i) * ps.pos[i], m += ps.mass_of(i);
   }
   c = (1.0 / m) * c;
   std::array<double, 2> mean{};

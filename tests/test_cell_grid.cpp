@@ -92,8 +92,8 @@ template <int D>
 std::map<std::uint64_t, Record<D>> records(const ParticleSet<D>& ps) {
   std::map<std::uint64_t, Record<D>> m;
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    m[ps.id[i]] = {ps.kind[i],  ps.pos[i], ps.vel[i],  ps.pos0[i], ps.vel0[i],
-                   ps.shift[i], ps.rho[i], ps.mass[i], ps.rho0[i], i};
+    m[ps.id[i]] = {ps.kind[i],  ps.pos[i], ps.vel[i],     ps.pos0[i], ps.vel0[i],
+                   ps.shift[i], ps.rho[i], ps.mass_of(i), ps.rho0[i], i};
   }
   return m;
 }
@@ -128,7 +128,7 @@ void expect_fields_preserved(const ParticleSet<D>& ps,
     EXPECT_EQ(ps.vel0[i], r.vel0);
     EXPECT_EQ(ps.shift[i], r.shift);
     EXPECT_EQ(ps.rho[i], r.rho);
-    EXPECT_EQ(ps.mass[i], r.mass);
+    EXPECT_EQ(ps.mass_of(i), r.mass);
     EXPECT_EQ(ps.rho0[i], r.rho0);
     EXPECT_TRUE(grid.inside(ps.pos[i]));
   }
@@ -306,7 +306,7 @@ TYPED_TEST(CellGridTest, SecondSortChangesNothing) {
   EXPECT_EQ(cl.ps.pos0, first.pos0);
   EXPECT_EQ(cl.ps.vel0, first.vel0);
   EXPECT_EQ(cl.ps.rho, first.rho);
-  EXPECT_EQ(cl.ps.mass, first.mass);
+  EXPECT_EQ(cl.ps.masses(), first.masses());
   EXPECT_EQ(cl.ps.rho0, first.rho0);
   EXPECT_EQ(grid.particle_cells(), cells);
   EXPECT_EQ(grid.group_end(Group::fluid), fe);

@@ -46,7 +46,7 @@ void check_layout(const LevelColumns<2>& c, const ParticleSet<2>& ps, const Tait
     EXPECT_NEAR(st.base[C::v + 1][q], ps.vel[i][1], tol);
     EXPECT_NEAR(st.base[C::rho][q], ps.rho[i] - 1000.0, tol * 10);
     EXPECT_NEAR(st.base[C::p][q], eos.pressure(ps.rho[i]), tol * 1e3);
-    EXPECT_NEAR(st.base[C::vol][q], ps.mass[i] / ps.rho[i], tol * 1e-5);
+    EXPECT_NEAR(st.base[C::vol][q], ps.mass_of(i) / ps.rho[i], tol * 1e-5);
   }
   // the dummies after the particles: far away, no volume
   ASSERT_EQ(st.col[0].size(), 3 + kBlockPad);
@@ -103,7 +103,7 @@ TEST(LevelColumns, WallVolumeColumnOnlyWithBufferParticles) {
     EXPECT_TRUE(b.has_wall_vol);
     for (std::uint32_t i = 0; i < 3; ++i) {
       const double want =
-          with_buffer.kind[i] == Kind::buffer ? 0.0 : with_buffer.mass[i] / with_buffer.rho[i];
+          with_buffer.kind[i] == Kind::buffer ? 0.0 : with_buffer.mass_of(i) / with_buffer.rho[i];
       const double got = floats ? b.f.state.base[C::wall_vol][i] : b.state.base[C::wall_vol][i];
       EXPECT_NEAR(got, want, floats ? 1e-7 * want : 0.0) << i;
     }

@@ -67,6 +67,7 @@ ParticleSet<D> filled_set(std::size_t n, std::uint64_t seed, bool keeps_shift = 
   for (std::size_t k = 0; k < n; ++k) ids[k] = 5000 + 13 * k;
   std::shuffle(ids.begin(), ids.end(), std::mt19937_64(seed));
   ParticleSet<D> ps;
+  ps.keep_mass(true);  // masses differ: one per particle, in the list
   ps.keep_shift(keeps_shift);
   ps.keep_pos0(keeps_pos0);
   ps.resize(n);
@@ -120,6 +121,7 @@ TYPED_TEST_SUITE(FieldListTest, Dims);
 TYPED_TEST(FieldListTest, ListHasTheExpectedFields) {
   constexpr int D = TypeParam::value;
   ParticleSet<D> ps;
+  ps.keep_mass(true);  // the list with every optional array
   std::map<FieldRole, int> count;
   std::set<std::string> names;
   ps.for_each_field([&](std::string_view name, auto&, FieldRole role) {
@@ -248,6 +250,49 @@ TYPED_TEST(FieldListTest, WithoutShiftingTheShiftArrayStaysEmpty) {
   ps.keep_shift(true);
   ASSERT_EQ(ps.shift.size(), ps.size());
   for (const Vec<D>& d : ps.shift) EXPECT_EQ(norm(d), 0.0);
+}
+
+// A level whose particles share one mass keeps it once (mass_each, no array): push_back of the
+// same mass, the sort, compaction and resize leave the array empty; a checkpoint stores one
+// mass per particle (the file format) and the load shares it again; the merge of two levels
+// gives each particle its level's mass; a different mass makes the set keep one per particle.
+TYPED_TEST(FieldListTest, AUniformMassIsKeptOnce) {
+  constexpr int D = TypeParam::value;
+  ParticleSet<D> ps;
+  const double m = 0.0125;
+  for (std::uint64_t k = 0; k < 600; ++k)
+    ps.push_back(k, Kind::fluid, value_of<Vec<D>>(k, 3, "pos"), Vec<D>{}, 1000.0, m);
+  EXPECT_FALSE(ps.keeps_mass);
+  EXPECT_TRUE(ps.mass.empty());
+  CellGrid<D> grid = cloud_grid<D>();
+  ASSERT_TRUE(grid.sort(ps).empty());
+  std::vector<std::uint8_t> keep(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) keep[i] = mix(ps.id[i]) % 4 != 0;
+  ps.compact(keep);
+  ps.resize(ps.size() + 3);
+  EXPECT_TRUE(ps.mass.empty());
+  EXPECT_EQ(ps.mass_of(ps.size() - 1), m);
+  Checkpoint ck;
+  ck.put_particles<D>(0, ps);
+  ASSERT_TRUE(ck.has("level0.mass"));
+  EXPECT_EQ(ck.f64("level0.mass"), std::vector<double>(ps.size(), m));
+  ParticleSet<D> restored;
+  ck.get_particles<D>(0, restored);
+  EXPECT_FALSE(restored.keeps_mass);
+  EXPECT_EQ(restored.mass_each, m);
+  ParticleSet<D> coarse;
+  coarse.push_back(1, Kind::fluid, Vec<D>{}, Vec<D>{}, 1000.0, 4.0 * m);
+  const std::vector<const ParticleSet<D>*> sets = {&ps, &coarse};
+  const MergedLevels<D> merged = merge_levels<D>(sets);
+  ASSERT_TRUE(merged.particles.keeps_mass);
+  EXPECT_EQ(merged.particles.mass.front(), m);
+  EXPECT_EQ(merged.particles.mass.back(), 4.0 * m);
+  const std::size_t n = ps.size();
+  ps.push_back(9999, Kind::fluid, Vec<D>{}, Vec<D>{}, 1000.0, 2.0 * m);
+  ASSERT_TRUE(ps.keeps_mass);
+  ASSERT_EQ(ps.mass.size(), n + 1);
+  EXPECT_EQ(ps.mass_of(n - 1), m);
+  EXPECT_EQ(ps.mass_of(n), 2.0 * m);
 }
 
 // A single-level run keeps no pos0 (the corrector does without it): the sort and the merge carry

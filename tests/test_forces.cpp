@@ -40,8 +40,8 @@ void expect_momentum_conserved(Cloud<D>& c, const char* what) {
   Vec<D> total{};
   double scale = 0.0;
   for (std::size_t i = 0; i < c.ps.size(); ++i) {
-    total += c.ps.mass[i] * c.ps.acc[i];
-    scale += c.ps.mass[i] * norm(c.ps.acc[i]);
+    total += c.ps.mass_of(i) * c.ps.acc[i];
+    scale += c.ps.mass_of(i) * norm(c.ps.acc[i]);
   }
   ASSERT_GT(scale, 0.0) << what;
   std::printf("[ forces %dD ] %s: |sum m a| / sum m |a| = %.2e\n", D, what, norm(total) / scale);
@@ -75,7 +75,7 @@ TYPED_TEST(ForcesTest, MolteniDiffusionIsAntisymmetric) {
     compute_forces(c.prm, c.ps, c.grid);
     double total = 0.0, scale = 0.0, rounding = 0.0;
     for (std::size_t i = 0; i < c.ps.size(); ++i) {
-      const double vol = c.ps.mass[i] / c.ps.rho[i];
+      const double vol = c.ps.mass_of(i) / c.ps.rho[i];
       const double d = c.ps.drho[i] - none[i];
       total += vol * d;
       scale += vol * std::abs(d);

@@ -79,7 +79,7 @@ TEST(CellGridGeometry, DamBreakBenchmarkGeometry) {
   std::set<std::uint64_t> ids(ps.id.begin(), ps.id.end());
   EXPECT_EQ(ids.size(), ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    ASSERT_DOUBLE_EQ(ps.mass[i], m);
+    ASSERT_DOUBLE_EQ(ps.mass_of(i), m);
     ASSERT_EQ(ps.rho[i], 1000.0);
     if (ps.kind[i] == Kind::wall) continue;
     // Fluid inside the tank, clear of the walls by at least dp.

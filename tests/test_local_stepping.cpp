@@ -135,7 +135,7 @@ TEST(LocalStepping, ThreeNestedLevelsMeetAndKeepTheirMass) {
   }
   double fine = 0.0;
   for (std::size_t i = 0; i < sim.level(2).ps.size(); ++i)
-    if (sim.level(2).ps.kind[i] == Kind::fluid) fine += sim.level(2).ps.mass[i];
+    if (sim.level(2).ps.kind[i] == Kind::fluid) fine += sim.level(2).ps.mass_of(i);
   const double drift = fluid_mass(sim) / m0 - 1.0;
   std::printf(
       "impact case to 0.7 s: %llu / %llu / %llu steps, finest level %.1f%% of the fluid, "

@@ -117,7 +117,7 @@ TYPED_TEST(OperatorsTest, GradientOfLinearField) {
               const Vec<D> r_ij = ps.pos[i] - ps.pos[j];
               const double r2 = norm2(r_ij);
               if (r2 >= kern.support2 || j == i) continue;
-              const double vol_j = ps.mass[j] / ps.rho[j];
+              const double vol_j = ps.mass_of(j) / ps.rho[j];
               grad += vol_j * (f(ps.pos[j]) - f(ps.pos[i])) * kern.f(std::sqrt(r2)) * r_ij;
             }
           });

@@ -38,7 +38,7 @@ TEST(OutputCsv, HeaderAndValuesRoundTrip2D) {
     EXPECT_EQ(std::stod(f[6]), ps.vel[i][1]);
     EXPECT_EQ(std::stod(f[7]), ps.rho[i]);
     EXPECT_EQ(std::stod(f[8]), kEos.pressure(ps.rho[i]));
-    EXPECT_EQ(std::stod(f[9]), ps.mass[i]);
+    EXPECT_EQ(std::stod(f[9]), ps.mass_of(i));
     EXPECT_EQ(std::stod(f[10]), extras[0].values[i]);
     EXPECT_EQ(std::stod(f[11]), extras[1].values[2 * i]);
     EXPECT_EQ(std::stod(f[12]), extras[1].values[2 * i + 1]);

@@ -21,7 +21,7 @@ double integrated_force_ratio(const Static<2>& s) {
   for (std::size_t i = 0; i < s.ps.size(); ++i) {
     const double r = norm(s.ps.pos[i]);
     if (r == 0.0) continue;
-    const double vol = s.ps.mass[i] / s.ps.rho[i];
+    const double vol = s.ps.mass_of(i) / s.ps.rho[i];
     sum += vol * s.ps.rho[i] * dot(s.sf.acc_st[i], s.ps.pos[i] * (-1.0 / r));
   }
   return sum / (2.0 * kPi * kSigma);
@@ -39,7 +39,7 @@ TEST(SurfaceTensionForce, IntegratedForceMatchesLaplaceOnRings) {
     Vec<2> net{};
     for (std::size_t i = 0; i < s.ps.size(); ++i) {
       const double r = norm(s.ps.pos[i]);
-      net += s.sf.acc_st[i] * s.ps.mass[i];
+      net += s.sf.acc_st[i] * s.ps.mass_of(i);
       if (r > R - dp) {
         ASSERT_GT(norm(s.sf.normal[i]), 0.5) << "outer-ring particle without a normal";
         const double c = dot(s.sf.normal[i], s.ps.pos[i] * (1.0 / r));

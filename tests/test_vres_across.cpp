@@ -84,8 +84,8 @@ TEST(VresAcross, LambdaIsContinuousAcrossTheFace) {
     const ParticleSet<2>& ps = sim.level(l).ps;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.kind[i] != Kind::fluid) continue;
-      centre += ps.pos[i] * ps.mass[i];
-      mass += ps.mass[i];
+      centre += ps.pos[i] * ps.mass_of(i);
+      mass += ps.mass_of(i);
     }
   }
   centre = centre * (1.0 / mass);

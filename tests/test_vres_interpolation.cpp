@@ -157,7 +157,7 @@ void check_constant_and_outside(int n) {
     double shep = 0.0;
     for (std::size_t j = 0; j < d.ps.size(); ++j) {
       const double r2 = norm2(x - d.ps.pos[j]);
-      if (r2 < d.kernel.support2) shep += d.ps.mass[j] / d.ps.rho[j] * d.kernel.w(std::sqrt(r2));
+      if (r2 < d.kernel.support2) shep += d.ps.mass_of(j) / d.ps.rho[j] * d.kernel.w(std::sqrt(r2));
     }
     EXPECT_NEAR(d.at(x).shepard, shep, 1e-12) << "t = " << t;
   }

@@ -91,8 +91,8 @@ TYPED_TEST(WallForceTest, IsMinusTheWallsForceOnTheFluid) {
     double scale = 0.0;
     for (std::size_t i = 0; i < c.ps.size(); ++i) {
       if (c.ps.kind[i] == Kind::fluid) {
-        on_fluid += c.ps.mass[i] * c.ps.acc[i];
-        scale += c.ps.mass[i] * norm(c.ps.acc[i]);
+        on_fluid += c.ps.mass_of(i) * c.ps.acc[i];
+        scale += c.ps.mass_of(i) * norm(c.ps.acc[i]);
       } else {
         on_walls += f[i];
       }

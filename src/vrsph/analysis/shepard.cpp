@@ -16,7 +16,7 @@ ShepardSums<D> shepard_sums(const Vec<D>& x, const ParticleSet<D>& ps, const Cel
       if (ps.kind[j] != Kind::fluid) continue;  // buffer particles mirror another level
       const double r2 = norm2(x - ps.pos[j]);
       if (r2 >= kernel.support2) continue;
-      const double vw = ps.mass[j] / ps.rho[j] * kernel.w(std::sqrt(r2));
+      const double vw = ps.mass_of(j) / ps.rho[j] * kernel.w(std::sqrt(r2));
       s.s += vw;
       s.p += eos.pressure(ps.rho[j]) * vw;
       s.rho += ps.rho[j] * vw;

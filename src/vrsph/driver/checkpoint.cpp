@@ -137,6 +137,7 @@ void Checkpoint::put_particles(int level, const ParticleSet<D>& ps) {
   ps.for_each_field([&](std::string_view name, const auto& v, FieldRole role) {
     if (role == FieldRole::persistent) put(pre + std::string(name), to_record(v));
   });
+  if (!ps.keeps_mass) put(pre + "mass", ps.masses());  // the file holds one per particle
 }
 
 template <int D>
@@ -145,6 +146,7 @@ void Checkpoint::get_particles(int level, ParticleSet<D>& ps) const {
   const std::size_t n = u64(pre + "id").size();
   ps = ParticleSet<D>{};
   ps.keeps_shift = has(pre + "shift");
+  ps.keeps_mass = true;  // read per particle, then shared if uniform
   ps.resize(n);
   ps.for_each_field([&](std::string_view name, auto& v, FieldRole role) {
     if (role != FieldRole::persistent) return;
@@ -157,6 +159,7 @@ void Checkpoint::get_particles(int level, ParticleSet<D>& ps) const {
     }
     from_record(r, v);
   });
+  ps.share_mass_if_uniform();
 }
 
 template void Checkpoint::put_particles<2>(int, const ParticleSet<2>&);

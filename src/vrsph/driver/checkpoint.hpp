@@ -59,7 +59,8 @@ class Checkpoint {
   static Checkpoint load(const std::filesystem::path& path);
 
   // The persistent arrays of ParticleSet's field list for one level, as "levelN.<field>"
-  // (vectors flattened, D values per particle).
+  // (vectors flattened, D values per particle; the mass one per particle even where the set
+  // keeps one for all, which the load shares again).
   template <int D>
   void put_particles(int level, const ParticleSet<D>& ps);
   template <int D>

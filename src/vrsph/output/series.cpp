@@ -24,8 +24,8 @@ SeriesRow compute_series_row(const ParticleSet<D>& ps, double t, long step, doub
     if (ps.kind[i] != Kind::fluid) continue;
     const double v2 = norm2(ps.vel[i]);
     ++row.n_fluid;
-    row.mass_fluid += ps.mass[i];
-    row.kinetic_energy += 0.5 * ps.mass[i] * v2;
+    row.mass_fluid += ps.mass_of(i);
+    row.kinetic_energy += 0.5 * ps.mass_of(i) * v2;
     max_v2 = std::max(max_v2, v2);
   }
   row.max_speed = std::sqrt(max_v2);

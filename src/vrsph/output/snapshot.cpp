@@ -110,7 +110,7 @@ void csv_row(fmt::memory_buffer& buf, const ParticleSet<D>& ps, const TaitEos& e
   for (int k = 0; k < D; ++k) field(ps.vel[i][k]);
   field(ps.rho[i]);
   field(eos.pressure(ps.rho[i]));
-  field(ps.mass[i]);
+  field(ps.mass_of(i));
   for (const ExtraField& f : extras)
     for (int c = 0; c < f.components; ++c) field(f.values[i * f.components + c]);
   buf.push_back('\n');
@@ -145,6 +145,7 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
                                         [](const ParticleSet<D>* ps) { return ps->keeps_shift; });
   m.particles.keeps_pos0 = std::all_of(levels.begin(), levels.end(),
                                        [](const ParticleSet<D>* ps) { return ps->keeps_pos0; });
+  m.particles.keeps_mass = true;  // levels differ in mass: one per particle
   m.particles.resize(n);
   m.level.resize(n);
   std::size_t j = 0;
@@ -158,6 +159,7 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
                       out.begin() + static_cast<std::ptrdiff_t>(j));
         },
         m.particles, ps);
+    for (std::size_t i = 0; i < np; ++i) m.particles.mass[j + i] = ps.mass_of(i);
     std::fill_n(m.level.begin() + static_cast<std::ptrdiff_t>(j), np, static_cast<std::uint8_t>(l));
     j += np;
   }

@@ -105,7 +105,7 @@ std::vector<VtpArray> point_data(const ParticleSet<D>& ps, const TaitEos& eos,
   out.push_back(make_array<Real>("p", real_type<Real>(), 1, n));
   for (std::size_t i = 0; i < n; ++i)
     put(out.back(), i, static_cast<Real>(eos.pressure(ps.rho[i])));
-  out.push_back(scalar_array<Real>("mass", ps.mass));
+  out.push_back(scalar_array<Real>("mass", ps.masses()));
   for (const ExtraField& f : extras) out.push_back(extra_array<Real, D>(f, n));
   return out;
 }

@@ -4,7 +4,9 @@
 // compaction, the cell sort (CellGrid::sort), checkpoints and level merges go through that list.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -41,10 +43,15 @@ template <int D>
 struct ParticleSet {
   std::vector<std::uint64_t> id;  // permanent particle id
   std::vector<Kind> kind;
-  std::vector<Vec<D>> pos;   // m
-  std::vector<Vec<D>> vel;   // m/s
-  std::vector<double> rho;   // kg/m^3
-  std::vector<double> mass;  // kg
+  std::vector<Vec<D>> pos;  // m
+  std::vector<Vec<D>> vel;  // m/s
+  std::vector<double> rho;  // kg/m^3
+  // Particle mass, kg. Every particle of a level usually has the same mass, rho0 dp^D: then the
+  // set holds that one value (mass_each) and `mass` stays empty, which saves a double per
+  // particle. A set given different masses keeps one per particle (keeps_mass). Read it through
+  // mass_of(i).
+  double mass_each = 0.0;
+  std::vector<double> mass;
   // Last shifting displacement, m (an output field). Kept only while keeps_shift (the level
   // shifts its particles: keep_shift); otherwise empty and left out of the field list, which
   // saves D doubles per particle.
@@ -60,10 +67,11 @@ struct ParticleSet {
   std::vector<double> rho0;
   bool keeps_shift = true;
   bool keeps_pos0 = true;
+  bool keeps_mass = false;
 
   // The list of arrays: calls f(name, role, s.array...) with the same array of every set in
-  // `sets`, array after array (shift and pos0 only when every set keeps them). A new per-particle
-  // array is one line here.
+  // `sets`, array after array (mass, shift and pos0 only when every set keeps them). A new
+  // per-particle array is one line here.
   template <class F, class... Sets>
   static void zip_fields(F&& f, Sets&... sets) {
     f(std::string_view("id"), FieldRole::persistent, sets.id...);
@@ -71,7 +79,7 @@ struct ParticleSet {
     f(std::string_view("pos"), FieldRole::persistent, sets.pos...);
     f(std::string_view("vel"), FieldRole::persistent, sets.vel...);
     f(std::string_view("rho"), FieldRole::persistent, sets.rho...);
-    f(std::string_view("mass"), FieldRole::persistent, sets.mass...);
+    if ((sets.keeps_mass && ...)) f(std::string_view("mass"), FieldRole::persistent, sets.mass...);
     if ((sets.keeps_shift && ...))
       f(std::string_view("shift"), FieldRole::persistent, sets.shift...);
     f(std::string_view("acc"), FieldRole::derived, sets.acc...);
@@ -95,6 +103,31 @@ struct ParticleSet {
 
   std::size_t size() const { return pos.size(); }
 
+  double mass_of(std::size_t i) const { return keeps_mass ? mass[i] : mass_each; }
+  // Every particle's mass, one value per particle (outputs and checkpoints).
+  std::vector<double> masses() const {
+    return keeps_mass ? mass : std::vector<double>(size(), mass_each);
+  }
+
+  // One mass per particle from now on (each set to mass_each), or one for the set: on = false
+  // needs every particle's mass equal, and keeps that value.
+  void keep_mass(bool on) {
+    if (on == keeps_mass) return;
+    if (on) {
+      mass.assign(size(), mass_each);
+    } else {
+      if (!mass.empty()) mass_each = mass.front();
+      std::vector<double>().swap(mass);
+    }
+    keeps_mass = on;
+  }
+  // Back to one mass for the set when the per-particle masses are all equal (after a load).
+  void share_mass_if_uniform() {
+    if (keeps_mass &&
+        std::adjacent_find(mass.begin(), mass.end(), std::not_equal_to<>()) == mass.end())
+      keep_mass(false);
+  }
+
   // Keeps the shift array (sized to the particles, zero where new) or gives it back.
   void keep_shift(bool on) { keep_optional(on, keeps_shift, shift); }
   // The same for pos0.
@@ -117,13 +150,15 @@ struct ParticleSet {
   void push_back(std::uint64_t id_, Kind k, const Vec<D>& x, const Vec<D>& v, double rho_,
                  double m) {
     const std::size_t n = size();
+    if (!keeps_mass && n == 0) mass_each = m;
+    if (!keeps_mass && m != mass_each) keep_mass(true);
     resize(n + 1);
     id[n] = id_;
     kind[n] = k;
     pos[n] = x;
     vel[n] = v;
     rho[n] = rho_;
-    mass[n] = m;
+    if (keeps_mass) mass[n] = m;
   }
 
   // Keeps the particles with keep[i] != 0, in order (the carried arrays; derived arrays are

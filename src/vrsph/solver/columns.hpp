@@ -116,7 +116,7 @@ struct LevelColumns {
     const bool buffers = has_wall_vol && !kGeometry;
     exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
       st.put_position(i, ps.pos[i]);
-      const double vol_i = weighted(i, ps.mass[i] / ps.rho[i]);
+      const double vol_i = weighted(i, ps.mass_of(i) / ps.rho[i]);
       st.col[C::vol][i] = static_cast<T>(vol_i);
       if constexpr (kGeometry) return;
       for (int k = 0; k < D; ++k) st.col[C::v + k][i] = static_cast<T>(ps.vel[i][k]);

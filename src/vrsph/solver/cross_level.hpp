@@ -67,7 +67,7 @@ void for_each_cross_pair(const CrossSource<D>& src, const WendlandC2<D>& kernel,
       g.w = static_cast<T>(kernel.w(rr));
       g.f = static_cast<T>(kernel.f(rr));
       g.in = T(1);
-      fn(j, g, ps.mass[j] / ps.rho[j]);
+      fn(j, g, ps.mass_of(j) / ps.rho[j]);
     }
   };
   src.grid->for_each_run_within(x, support, Group::fluid, visit);

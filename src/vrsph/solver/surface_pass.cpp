@@ -110,7 +110,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
     sf.l_corr[i] = correction_from_m(m, lambda);
     sf.grad_c[i] = grad_c;
     sf.div_r[i] = s[5];
-    const double vol_i = ps.mass[i] / ps.rho[i] * (cols.weight.empty() ? 1.0 : cols.weight[i]);
+    const double vol_i = ps.mass_of(i) / ps.rho[i] * (cols.weight.empty() ? 1.0 : cols.weight[i]);
     sf.shepard[i] = shepard_pair(vol_i, w_self) + s[6];  // self + neighbours
     if (grad_w) sf.grad_w[i] = s[D == 3 ? 11 : 7];
   };

@@ -15,7 +15,7 @@ template <int D>
 Vec<D> wall_pair(const SolverParams<D>& prm, const ParticleSet<D>& ps, std::size_t i, std::size_t j,
                  const Vec<D>& r_ij, double r2) {
   const double f = prm.kernel.f(std::sqrt(r2));
-  const double rho_i = ps.rho[i], rho_j = ps.rho[j], m_j = ps.mass[j];
+  const double rho_i = ps.rho[i], rho_j = ps.rho[j], m_j = ps.mass_of(j);
   const double vol_j = m_j / rho_j;
   const Vec<D> v_ij = ps.vel[i] - ps.vel[j];
   const double vij_dot_rij = dot(v_ij, r_ij);
@@ -56,7 +56,7 @@ void wall_reaction_forces(const SolverParams<D>& prm, const ParticleSet<D>& ps,
         a += wall_pair(prm, ps, i, j, r_ij, r2);
       }
     });
-    force[i] = ps.mass[i] * a;
+    force[i] = ps.mass_of(i) * a;
   });
 }
 

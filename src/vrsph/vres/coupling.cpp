@@ -111,7 +111,7 @@ void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (keep[i]) continue;
     ++removed;
-    tally.deleted_mass += ps.mass[i];
+    tally.deleted_mass += ps.mass_of(i);
   }
   if (removed == 0) return;
   tally.deleted += removed;
@@ -160,7 +160,7 @@ std::size_t remove_unkept(Level<D>& L, const std::vector<std::uint8_t>& keep,
   std::uint64_t removed = 0;
   for (std::size_t i = 0; i < L.ps.size(); ++i) {
     if (keep[i]) continue;
-    tally.deleted_mass += L.ps.mass[i];
+    tally.deleted_mass += L.ps.mass_of(i);
     ++removed;
   }
   if (removed == 0) return 0;

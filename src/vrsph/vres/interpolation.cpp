@@ -95,17 +95,17 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
                   [&](std::uint32_t j, const Vec<D>& r, double r2) {
                     const DonorAt<D> dj = donor_at(donors, j, a);
                     if (donors.kind[j] != Kind::fluid) {  // buffer: counted in the fill only
-                      out.shepard_buffer += donors.mass[j] / dj.rho * kernel.w(std::sqrt(r2));
+                      out.shepard_buffer += donors.mass_of(j) / dj.rho * kernel.w(std::sqrt(r2));
                       return;
                     }
-                    s.add(r, r2, donors.mass[j] / dj.rho, dj.rho, dj.v, kernel);
+                    s.add(r, r2, donors.mass_of(j) / dj.rho, dj.rho, dj.v, kernel);
                   });
   out.shepard = s.a[0][0];
   out.div_r = s.div_r;
   auto now = [&](std::uint32_t j) { return donors.pos[j]; };
   for_each_within(grid, c, Group::wall, x, kernel.support2, now,
                   [&](std::uint32_t j, const Vec<D>&, double r2) {
-                    const double v = donors.mass[j] / donors.rho[j];
+                    const double v = donors.mass_of(j) / donors.rho[j];
                     out.shepard_walls += v * kernel.w(std::sqrt(r2));
                   });
   if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
@@ -144,7 +144,7 @@ T shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGrid<D>
   for_each_within(grid, c, Group::fluid, x, kernel.support2, now,
                   [&](std::uint32_t j, const Vec<D>&, double r2) {
                     if (donors.kind[j] != Kind::fluid) return;
-                    const double vw = donors.mass[j] / donors.rho[j] * kernel.w(std::sqrt(r2));
+                    const double vw = donors.mass_of(j) / donors.rho[j] * kernel.w(std::sqrt(r2));
                     sw += vw;
                     sfw += field[j] * vw;
                   });

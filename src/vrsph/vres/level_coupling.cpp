@@ -212,7 +212,7 @@ Vec<D> LevelCoupling<D>::net_force(const std::vector<Level<D>>& levels, std::siz
   const bool coupling = wants_buffer_reaction();
   for (std::size_t i = 0; i < L.ps.size(); ++i) {
     if (coupling && L.ps.kind[i] == Kind::buffer) f -= buffer_mass(L, i) * L.ps.acc[i];
-    if (st && L.ps.kind[i] == Kind::fluid) f += L.ps.mass[i] * L.sf.acc_st[i];
+    if (st && L.ps.kind[i] == Kind::fluid) f += L.ps.mass_of(i) * L.sf.acc_st[i];
   }
   return f;
 }

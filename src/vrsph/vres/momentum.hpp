@@ -51,8 +51,8 @@ Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
   for (const Level<D>& L : levels) {
     for (std::size_t i = 0; i < L.ps.size(); ++i) {
       if (L.ps.kind[i] != Kind::fluid) continue;
-      lane_p[i % kLanes] += L.ps.mass[i] * L.ps.vel[i];
-      lane_m[i % kLanes] += L.ps.mass[i];
+      lane_p[i % kLanes] += L.ps.mass_of(i) * L.ps.vel[i];
+      lane_m[i % kLanes] += L.ps.mass_of(i);
     }
   }
   Vec<D> p{};
@@ -68,7 +68,7 @@ double fluid_mass(const std::vector<Level<D>>& levels) {
   for (const Level<D>& L : levels) {
     const std::size_t n = L.ps.size();
     for (std::size_t i = 0; i < n; ++i)
-      lane[i % kLanes] += L.ps.kind[i] == Kind::fluid ? L.ps.mass[i] : 0.0;
+      lane[i % kLanes] += L.ps.kind[i] == Kind::fluid ? L.ps.mass_of(i) : 0.0;
   }
   double mass = 0.0;
   for (double m : lane) mass += m;
@@ -79,7 +79,7 @@ double fluid_mass(const std::vector<Level<D>>& levels) {
 // numerics.vres_buffer_ramp), so that its reaction balances the weighted force it exerts.
 template <int D>
 double buffer_mass(const Level<D>& L, std::size_t i) {
-  return L.cols.weight.empty() ? L.ps.mass[i] : L.cols.weight[i] * L.ps.mass[i];
+  return L.cols.weight.empty() ? L.ps.mass_of(i) : L.cols.weight[i] * L.ps.mass_of(i);
 }
 
 // F_c: the net force of all buffers on the fluid of their level, -sum_buffer m_j omega_j a_j.
@@ -102,7 +102,7 @@ Vec<D> surface_net_force(const std::vector<Level<D>>& levels) {
   for (const Level<D>& L : levels) {
     if (L.sf.acc_st.size() != L.ps.size()) continue;
     for (std::size_t i = 0; i < L.ps.size(); ++i) {
-      if (L.ps.kind[i] == Kind::fluid) lane[i % kLanes] += L.ps.mass[i] * L.sf.acc_st[i];
+      if (L.ps.kind[i] == Kind::fluid) lane[i % kLanes] += L.ps.mass_of(i) * L.sf.acc_st[i];
     }
   }
   Vec<D> f{};
