@@ -4,7 +4,9 @@
 # and write a PNG (checked by its signature) or the figures asked for; plot_run.sh's titles must
 # say what was drawn (both levels and their buffer particles; walls; rho0 g depth on the tank's
 # line; "parasitic currents" for the drop only); laplace_window.sh's mean must equal the mean of
-# series.csv's column; probe_window.sh's figures on a probe file made up here. Without gnuplot the test is skipped (exit 77) with a message.
+# series.csv's column; probe_window.sh's figures on a probe file made up here; draws.sh's
+# table for two draws, and a second call that finds them finished. Without gnuplot the test is
+# skipped (exit 77) with a message.
 #   tests/scripts_test.sh VRSPH_BINARY REPO_ROOT
 set -euo pipefail
 
@@ -104,4 +106,19 @@ awk 'BEGIN { print "id,level,kind,x,y,vx,vy,rho,p,mass"
 got=$("$root/scripts/laplace_centroid.sh" "$lc" 0 1 | awk '$1 == "0" { print $2, $3, $4, $5, $6 }')
 want="1.0000 1.0000 13 10.1538 0.5547"
 [ "$got" = "$want" ] || fail "laplace_centroid.sh printed '$got', expected '$want'"
+# draws.sh: two draws of the tiny drop, the second with the CFL nudged by 1e-7; its table has a
+# line per draw and the spread; a second call finds both finished and runs nothing again.
+dr=$tmp/draws
+"$root/scripts/draws.sh" --vrsph "$vrsph" --after 0.001 "$root/cases/droplet_vr_2d.toml" 2 "$dr" \
+  --set resolution.dp=2e-4 --set case.end_time=0.002 --set output.interval=0.001 \
+  --set 'output.formats=["csv"]' > "$tmp/draws.log" || fail "draws.sh exited $?: $(cat "$tmp/draws.log")"
+grep -q '^cfl *= *0.2000001\b' "$dr/k1/case.toml" || fail "draw 1 did not run at cfl 0.2000001"
+[ "$(grep -c '^k[01] ' "$tmp/draws.log")" = 2 ] || fail "draws.sh table: $(cat "$tmp/draws.log")"
+grep -q '^draw means of max_speed .* (2 draws)$' "$tmp/draws.log" || fail "draws.sh: no spread line"
+before=$(stat -c %Y "$dr/k0/summary.json")
+sleep 1
+"$root/scripts/draws.sh" --vrsph "$vrsph" --after 0.001 "$root/cases/droplet_vr_2d.toml" 2 "$dr" \
+  --set resolution.dp=2e-4 --set case.end_time=0.002 --set output.interval=0.001 \
+  --set 'output.formats=["csv"]' > /dev/null || fail "draws.sh (again) exited $?"
+[ "$(stat -c %Y "$dr/k0/summary.json")" = "$before" ] || fail "draws.sh ran a finished draw again"
 echo "scripts_test: all scripts ran"
