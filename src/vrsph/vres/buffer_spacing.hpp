@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "vrsph/exec/parallel.hpp"
+#include "vrsph/particles/within.hpp"
 #include "vrsph/solver/level.hpp"
 
 namespace vrsph {
@@ -32,17 +33,15 @@ Vec<D> buffer_spacing_shift(const Level<D>& L, std::size_t i, double d_min) {
   const double d2 = d_min * d_min;
   Vec<D> d{};
   const std::int64_t c = L.grid.particle_cells()[i];
+  auto at = [&](std::uint32_t j) { return ps.pos[j]; };
   for (Group g : {Group::fluid, Group::wall}) {
-    L.grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) {
-      for (std::uint32_t j = b; j < e; ++j) {
-        const Vec<D> r = ps.pos[i] - ps.pos[j];
-        const double r2 = norm2(r);
-        if (!(r2 < d2) || j == i || r2 == 0.0) continue;
-        const double dist = std::sqrt(r2);
-        const double w = ps.kind[j] == Kind::buffer ? 0.5 : 1.0;
-        d += r * (w * (d_min - dist) / dist);
-      }
-    });
+    for_each_within(L.grid, c, g, ps.pos[i], d2, at,
+                    [&](std::uint32_t j, const Vec<D>& r, double r2) {
+                      if (j == i || r2 == 0.0) return;
+                      const double dist = std::sqrt(r2);
+                      const double w = ps.kind[j] == Kind::buffer ? 0.5 : 1.0;
+                      d += r * (w * (d_min - dist) / dist);
+                    });
   }
   return d;
 }

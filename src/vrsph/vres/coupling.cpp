@@ -1,6 +1,7 @@
 #include "vrsph/vres/coupling.hpp"
 
 #include "vrsph/exec/parallel.hpp"
+#include "vrsph/particles/within.hpp"
 #include "vrsph/vres/interpolation.hpp"
 
 namespace vrsph {
@@ -28,11 +29,10 @@ bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t fi
   std::int64_t c = 0;
   if (!L.grid.stencil_cell(x, c)) return false;
   bool found = false;
-  for (Group g : {Group::fluid, Group::wall}) {
-    L.grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) {
-      for (std::uint32_t j = b; j < e && !found; ++j) found = norm2(L.ps.pos[j] - x) < d2;
-    });
-  }
+  auto at = [&](std::uint32_t j) { return L.ps.pos[j]; };
+  for (Group g : {Group::fluid, Group::wall})
+    for_each_within(L.grid, c, g, x, d2, at,
+                    [&](std::uint32_t, const Vec<D>&, double) { found = true; });
   return found;
 }
 

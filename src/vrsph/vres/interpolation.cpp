@@ -1,6 +1,7 @@
 #include "vrsph/vres/interpolation.hpp"
 
 #include "vrsph/exec/parallel.hpp"
+#include "vrsph/particles/within.hpp"
 
 namespace vrsph {
 namespace {
@@ -36,33 +37,6 @@ struct DonorSums {
     div_r -= vf * r2;
   }
 };
-
-// Calls fn(j, r, r2), r = x - pos(j), for the particles j of group g in the stencil of cell c
-// that lie within the support (r2 < support2), in index order. Two phases per piece of a run:
-// the indices within reach are listed without a branch, then visited. About two thirds of a
-// 2D stencil's candidates lie beyond the support, in no pattern a branch predictor could learn:
-// one test-and-branch per candidate cost more than the sums of the candidates kept.
-template <int D, class Pos, class Fn>
-inline void for_each_within(const CellGrid<D>& grid, std::int64_t c, Group g, const Vec<D>& x,
-                            double support2, Pos&& pos, Fn&& fn) {
-  constexpr std::uint32_t kPiece = 64;
-  std::uint32_t kept[kPiece];
-  grid.for_each_run(c, g, [&](std::uint32_t begin, std::uint32_t end) {
-    for (std::uint32_t b = begin; b < end; b += kPiece) {
-      const std::uint32_t e = std::min(end, b + kPiece);
-      std::uint32_t n = 0;
-      for (std::uint32_t j = b; j < e; ++j) {
-        kept[n] = j;
-        n += norm2(x - pos(j)) < support2 ? 1u : 0u;
-      }
-      for (std::uint32_t k = 0; k < n; ++k) {
-        const std::uint32_t j = kept[k];
-        const Vec<D> r = x - pos(j);
-        fn(j, r, norm2(r));
-      }
-    }
-  });
-}
 
 // Donor j at the fraction a of its last step: the states at the step's start (pos0, vel0, rho0)
 // and end, linearly interpolated; a = 1 is the current state itself. The position first: most
