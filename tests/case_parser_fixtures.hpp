@@ -1,5 +1,5 @@
 // The smallest valid case and the parse / error helpers shared by the case-file tests
-// (test_case_parser.cpp, test_case_errors.cpp).
+// (test_case_parser.cpp, test_case_errors.cpp, and the tests of single numerics keys).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -47,6 +47,14 @@ inline CaseSpec reparse(const std::string& text) {
   return parse_case(toml::parse(std::string_view(text), std::string_view("case.toml")),
                     "case.toml");
 }
+
+// kMinimal with a [numerics] table of the given lines ("key = value\n" each).
+inline std::string with_numerics(const std::string& lines) {
+  return std::string(kMinimal) + "[numerics]\n" + lines;
+}
+
+// The spec as a run folder's case.toml gives it back: written (case_to_toml) and parsed again.
+inline CaseSpec written_back(const CaseSpec& s) { return reparse(case_to_toml(s)); }
 
 // The CaseError message for a case text (empty, and a test failure, when it parses).
 inline std::string error_of(const std::string& text, std::initializer_list<std::string> sets = {}) {

@@ -64,16 +64,14 @@ TEST(VresBufferSurface, OwnSumsSeeTheShellEdgeAndTheExchangeRemovesIt) {
 // Also numerics.vres_shepard_fill (vres/interpolation.hpp), checked here with its neighbour key.
 TEST(VresBufferSurface, KeysAreCheckedAndWrittenBack) {
   using namespace case_fixtures;
-  expect_contains(error_of(std::string(kMinimal) + "[numerics]\nvres_buffer_surface = \"all\"\n"),
+  expect_contains(error_of(with_numerics("vres_buffer_surface = \"all\"\n")),
                   {"numerics.vres_buffer_surface", "all", "own"});
-  const CaseSpec s = parse_case(
-      toml::parse(std::string(kMinimal) + "[numerics]\nvres_buffer_surface = \"own\"\n"), "test");
+  const CaseSpec s = parse_text(with_numerics("vres_buffer_surface = \"own\"\n"));
   EXPECT_EQ(s.vres_buffer_surface, BufferSurface::own);
-  const CaseSpec back = parse_case(toml::parse(case_to_toml(s)), "back");
-  EXPECT_EQ(back.vres_buffer_surface, BufferSurface::own);
-  expect_contains(error_of(std::string(kMinimal) + "[numerics]\nvres_shepard_fill = 3\n"),
+  EXPECT_EQ(written_back(s).vres_buffer_surface, BufferSurface::own);
+  expect_contains(error_of(with_numerics("vres_shepard_fill = 3\n")),
                   {"numerics.vres_shepard_fill = 3", "[0, 2]"});
-  const CaseSpec dflt = parse_case(toml::parse(std::string(kMinimal)), "default");
+  const CaseSpec dflt = parse_text(kMinimal);
   EXPECT_EQ(dflt.vres_shepard_fill, 0.0);
   EXPECT_EQ(dflt.vres_buffer_surface, BufferSurface::edge);
 }

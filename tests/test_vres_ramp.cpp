@@ -105,13 +105,11 @@ TEST(VresRamp, FlowThroughAnInterfaceKeepsItsMass) {
 
 TEST(VresRamp, KeyIsCheckedAndWrittenBack) {
   using namespace case_fixtures;
-  expect_contains(error_of(std::string(kMinimal) + "[numerics]\nvres_buffer_ramp = 5\n"),
+  expect_contains(error_of(with_numerics("vres_buffer_ramp = 5\n")),
                   {"numerics.vres_buffer_ramp = 5", "[0, 4]"});
-  const CaseSpec s = parse_case(
-      toml::parse(std::string(kMinimal) + "[numerics]\nvres_buffer_ramp = 1.5\n"), "test");
+  const CaseSpec s = parse_text(with_numerics("vres_buffer_ramp = 1.5\n"));
   EXPECT_EQ(s.vres_buffer_ramp, 1.5);
-  const CaseSpec back = parse_case(toml::parse(case_to_toml(s)), "back");
-  EXPECT_EQ(back.vres_buffer_ramp, 1.5);
+  EXPECT_EQ(written_back(s).vres_buffer_ramp, 1.5);
 }
 
 }  // namespace

@@ -123,15 +123,12 @@ TEST(VresSpacing, RunDoesNotDependOnThreads) {
 
 TEST(VresSpacing, KeyIsCheckedAndWrittenBack) {
   using namespace case_fixtures;
-  expect_contains(error_of(std::string(kMinimal) + "[numerics]\nvres_buffer_spacing = 1.2\n"),
+  expect_contains(error_of(with_numerics("vres_buffer_spacing = 1.2\n")),
                   {"numerics.vres_buffer_spacing = 1.2", "[0, 1)"});
-  const CaseSpec s = parse_case(
-      toml::parse(std::string(kMinimal) + "[numerics]\nvres_buffer_spacing = 0.55\n"), "test");
+  const CaseSpec s = parse_text(with_numerics("vres_buffer_spacing = 0.55\n"));
   EXPECT_EQ(s.vres_buffer_spacing, 0.55);
-  const CaseSpec back = parse_case(toml::parse(case_to_toml(s)), "back");
-  EXPECT_EQ(back.vres_buffer_spacing, 0.55);
-  const CaseSpec off = parse_case(toml::parse(std::string(kMinimal)), "test");
-  EXPECT_EQ(off.vres_buffer_spacing, 0.0);
+  EXPECT_EQ(written_back(s).vres_buffer_spacing, 0.55);
+  EXPECT_EQ(parse_text(kMinimal).vres_buffer_spacing, 0.0);
 }
 
 }  // namespace
