@@ -10,7 +10,7 @@
 # Draw k runs in OUT_DIR/k<k> with one thread, J at a time (default 2); a draw whose folder
 # already holds summary.json (a finished run) is not run again, so an interrupted study resumes
 # where it stopped. T0 defaults to 0.1 s. The base CFL is the case's (after --set), read from
-# the first draw's case.toml.
+# the resolved case.toml of a one-step run made first (and deleted).
 set -euo pipefail
 
 usage() { echo "usage: draws.sh [--jobs J] [--after T0] [--vrsph BIN] CASE N OUT_DIR [--set KEY=VALUE]..." >&2; }
@@ -75,7 +75,7 @@ for ((k = 0; k < n; ++k)); do
       if (c == 0) { printf "k%-3s %-12s no samples after %s s\n", k, cfl, t0; exit }
       printf "k%-3s %-12s %-10.5f %-10.5f %-8d %-8d\n", k, cfl, s / c, m, cr, de }' "$f"
 done | tee "$out/draws.txt"
-awk 'NR > 0 && $3 ~ /^[0-9.]+$/ { v[++n] = $3 }
+awk '$3 ~ /^[0-9.]+$/ { v[++n] = $3 }
      END {
        if (n == 0) { print "no draw has samples"; exit 1 }
        for (i = 1; i <= n; ++i) for (j = i + 1; j <= n; ++j) if (v[j] < v[i]) { t = v[i]; v[i] = v[j]; v[j] = t }

@@ -159,7 +159,8 @@ MergedLevels<D> merge_levels(std::span<const ParticleSet<D>* const> levels) {
                       out.begin() + static_cast<std::ptrdiff_t>(j));
         },
         m.particles, ps);
-    for (std::size_t i = 0; i < np; ++i) m.particles.mass[j + i] = ps.mass_of(i);
+    if (!ps.keeps_mass)  // the zip above copied the masses of a level that keeps one each
+      std::fill_n(m.particles.mass.begin() + static_cast<std::ptrdiff_t>(j), np, ps.mass_each);
     std::fill_n(m.level.begin() + static_cast<std::ptrdiff_t>(j), np, static_cast<std::uint8_t>(l));
     j += np;
   }
