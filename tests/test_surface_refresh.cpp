@@ -77,6 +77,38 @@ TEST(SurfaceRefresh, ClockRefreshesAtCorrectorStagesOnceTheIntervalHasPassed) {
   EXPECT_TRUE(r.due(0.0, false));
 }
 
+// Between refreshes the acceleration is extrapolated from the last two: a_ref + tau (a_ref -
+// a_before) / (t_ref - t_before), where both refreshes gave the particle a non-zero value; held
+// as it is elsewhere (a particle created since, or one that got or lost its normal).
+TEST(SurfaceRefresh, HeldAccelerationIsExtrapolatedFromTheLastTwoRefreshes) {
+  SurfaceFields<2> sf;
+  sf.held = true;
+  sf.acc_st = {Vec<2>{1.0, 2.0}, Vec<2>{0.0, 0.0}, Vec<2>{3.0, 0.0}};
+  sf.extrapolate(0.5);  // nothing refreshed yet: left as it is
+  EXPECT_EQ(sf.acc_st[0][1], 2.0);
+  sf.take_refresh(std::nan(""));  // the first refresh: no rate
+  ASSERT_EQ(sf.acc_rate.size(), 3u);
+  EXPECT_EQ(norm2(sf.acc_rate[0]), 0.0);
+  sf.extrapolate(0.5);
+  EXPECT_EQ(sf.acc_st[0][0], 1.0);
+  sf.acc_st = {Vec<2>{2.0, 0.0}, Vec<2>{5.0, 5.0}, Vec<2>{0.0, 0.0}};  // the next refresh
+  sf.take_refresh(0.25);
+  EXPECT_DOUBLE_EQ(sf.acc_rate[0][0], 4.0);
+  EXPECT_DOUBLE_EQ(sf.acc_rate[0][1], -8.0);
+  EXPECT_EQ(norm2(sf.acc_rate[1]), 0.0);  // 0 before: held
+  EXPECT_EQ(norm2(sf.acc_rate[2]), 0.0);  // 0 now: held at 0
+  sf.extrapolate(0.125);
+  EXPECT_DOUBLE_EQ(sf.acc_st[0][0], 2.5);
+  EXPECT_DOUBLE_EQ(sf.acc_st[0][1], -1.0);
+  EXPECT_EQ(sf.acc_st[1][0], 5.0);
+  EXPECT_EQ(norm2(sf.acc_st[2]), 0.0);
+  sf.compact_held({1, 0, 1});  // the rate follows its particle
+  sf.fit_held(3);              // and a created one holds nothing
+  ASSERT_EQ(sf.acc_ref.size(), 3u);
+  EXPECT_DOUBLE_EQ(sf.acc_rate[0][0], 4.0);
+  EXPECT_EQ(norm2(sf.acc_ref[2]) + norm2(sf.acc_rate[2]), 0.0);
+}
+
 // The drop at dp 2e-4 to 5 ms: refreshing at every corrector stage (interval 0.1 of the
 // capillary limit, shorter than one step here) stays with the every-step run, while running
 // passes 2 and 3 half as often.
@@ -131,8 +163,12 @@ TEST(SurfaceRefresh, VariableResolutionDropHoldsItsFieldsThroughKindChanges) {
     Simulation<2> sim(spec);
     while (sim.time() < spec.end_time - 1e-12) {
       sim.step();
-      for (std::size_t l = 0; l < sim.level_count(); ++l)
-        ASSERT_EQ(sim.level(l).sf.acc_st.size(), sim.level(l).ps.size()) << l;
+      for (std::size_t l = 0; l < sim.level_count(); ++l) {
+        const SurfaceFields<2>& sf = sim.level(l).sf;
+        ASSERT_EQ(sf.acc_st.size(), sim.level(l).ps.size()) << l;
+        ASSERT_EQ(sf.acc_rate.size(), sf.acc_ref.size()) << l;
+        if (!sf.acc_ref.empty()) ASSERT_EQ(sf.acc_ref.size(), sim.level(l).ps.size()) << l;
+      }
     }
     if (threads == 1) {
       one = state_of(sim);

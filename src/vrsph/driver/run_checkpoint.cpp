@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <string>
 #include <type_traits>
+#include <vector>
 
 #include "vrsph/driver/fnv_hash.hpp"
 #include "vrsph/setup/case_keys.hpp"
@@ -43,22 +45,46 @@ void check_case(const Checkpoint& ck, const CaseSpec& spec, const std::filesyste
 
 namespace {
 
-// The capillary refresh's held acceleration ("levelN.acc_st", D values per particle) and the
-// time of the last refresh of each clock: without them a resumed run would refresh at once where
-// the uninterrupted run did not.
+// The capillary refresh's held acceleration ("levelN.acc_st", D values per particle), the last
+// refresh's value and its rate ("levelN.acc_ref", "levelN.acc_rate"; SurfaceFields::extrapolate)
+// and the time of the last refresh of each clock: without them a resumed run would refresh at
+// once where the uninterrupted run did not.
+template <int D>
+std::vector<double> flat_of(const std::vector<Vec<D>>& a) {
+  std::vector<double> flat;
+  flat.reserve(a.size() * D);
+  for (const Vec<D>& v : a)
+    for (int k = 0; k < D; ++k) flat.push_back(v[k]);
+  return flat;
+}
+
 template <int D>
 void put_held_fields(Checkpoint& ck, const Simulation<D>& sim) {
   std::vector<double> last;
   for (const RefreshClock& c : sim.refresh_clocks()) last.push_back(c.last());
   ck.put("surface.refresh_times", last);
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
-    const auto& a = sim.level(l).sf.acc_st;
-    std::vector<double> flat;
-    flat.reserve(a.size() * D);
-    for (const Vec<D>& v : a)
-      for (int k = 0; k < D; ++k) flat.push_back(v[k]);
-    ck.put(fmt::format("level{}.acc_st", l), std::move(flat));
+    const auto& sf = sim.level(l).sf;
+    ck.put(fmt::format("level{}.acc_st", l), flat_of<D>(sf.acc_st));
+    ck.put(fmt::format("level{}.acc_ref", l), flat_of<D>(sf.acc_ref));
+    ck.put(fmt::format("level{}.acc_rate", l), flat_of<D>(sf.acc_rate));
   }
+}
+
+// Reads key into a (empty: left empty; absent, as in checkpoints written before the rate: left
+// as it is).
+template <int D>
+void get_vectors(const Checkpoint& ck, const std::string& key, std::size_t n,
+                 std::vector<Vec<D>>& a) {
+  if (!ck.has(key)) return;
+  const auto& flat = ck.f64(key);
+  a.clear();
+  if (flat.empty()) return;
+  if (flat.size() != n * D)
+    throw CheckpointError(fmt::format("{}: {} values for {} particles", key, flat.size(), n));
+  a.assign(n, Vec<D>{});
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < D; ++k) a[i][k] = flat[i * D + k];
 }
 
 // A checkpoint without them (written with refresh = "every_step" before) refreshes at once.
@@ -71,14 +97,11 @@ void get_held_fields(const Checkpoint& ck, Simulation<D>& sim) {
                                       sim.refresh_clocks().size()));
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     auto& L = sim.level(l);
-    const auto& flat = ck.f64(fmt::format("level{}.acc_st", l));
-    if (flat.empty()) continue;  // no refresh yet
-    if (flat.size() != L.ps.size() * D)
-      throw CheckpointError(
-          fmt::format("level{}.acc_st: {} values for {} particles", l, flat.size(), L.ps.size()));
-    L.sf.acc_st.assign(L.ps.size(), Vec<D>{});
-    for (std::size_t i = 0; i < L.ps.size(); ++i)
-      for (int k = 0; k < D; ++k) L.sf.acc_st[i][k] = flat[i * D + k];
+    const std::size_t n = L.ps.size();
+    if (ck.f64(fmt::format("level{}.acc_st", l)).empty()) continue;  // no refresh yet
+    get_vectors<D>(ck, fmt::format("level{}.acc_st", l), n, L.sf.acc_st);
+    get_vectors<D>(ck, fmt::format("level{}.acc_ref", l), n, L.sf.acc_ref);
+    get_vectors<D>(ck, fmt::format("level{}.acc_rate", l), n, L.sf.acc_rate);
   }
   for (std::size_t k = 0; k < last.size(); ++k) sim.restore_refresh(k, last[k]);
 }

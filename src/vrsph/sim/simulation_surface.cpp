@@ -62,12 +62,17 @@ template <int D>
 void Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
   if (!has_surface_fields()) return;
   RefreshClock& clock = refresh_[0];  // one clock for all levels, as for dt
-  const bool capillary = levels_[0].prm.sigma > 0.0 && clock.due(t_eval, corrector_stage);
+  const bool sigma = levels_[0].prm.sigma > 0.0;
+  const bool capillary = sigma && clock.due(t_eval, corrector_stage);
+  if (sigma && !capillary)
+    for (Level<D>& L : levels_) L.sf.extrapolate(t_eval - clock.last());
   const bool shifting = levels_[0].prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return;
   const double t0 = now_seconds();
   surface_passes(capillary);
   if (capillary) {
+    if (!clock.every_step())
+      for (Level<D>& L : levels_) L.sf.take_refresh(t_eval - clock.last());
     clock.mark(t_eval);
     ++times_.capillary_passes;
   }
@@ -82,7 +87,9 @@ void Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corr
   if (!has_surface_fields()) return;
   Level<D>& L = levels_[k];
   RefreshClock& clock = refresh_[k];
-  const bool capillary = L.prm.sigma > 0.0 && clock.due(t_eval, corrector_stage);
+  const bool sigma = L.prm.sigma > 0.0;
+  const bool capillary = sigma && clock.due(t_eval, corrector_stage);
+  if (sigma && !capillary) L.sf.extrapolate(t_eval - clock.last());
   const bool shifting = L.prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return;
   const double t0 = now_seconds();
@@ -92,6 +99,7 @@ void Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corr
     surface_pass_normals(L);
     coupling_.after_normals(levels_, k);
     surface_pass_curvature(L);
+    if (!clock.every_step()) L.sf.take_refresh(t_eval - clock.last());
     clock.mark(t_eval);
     ++times_.capillary_passes;
   }

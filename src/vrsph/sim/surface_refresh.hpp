@@ -1,11 +1,17 @@
 // When the surface-tension passes 2 and 3 run (numerics.surface_tension.refresh; not part of Cen
 // et al. 2024). The normals, the curvature and the capillary acceleration change on the capillary
 // time scale, sqrt(rho h^3 / sigma), while the step is set by sound (dt = CFL h / c0): on the
-// shipped drops the capillary limit of solver/timestep.hpp is 4-5 acoustic steps. With
-// "capillary" the acceleration a_st is computed once per refresh_interval x that limit and held
-// (carried with its particle through sorts and kind changes) in between; pass 1 still runs at the
-// corrector's stage of every step, so that shifting's grad C and div r stay current. The interval
-// was chosen by measurement (docs/validation.md, "Capillary refresh").
+// shipped drops the capillary limit of solver/timestep.hpp is 4-10 acoustic steps. With
+// "capillary" the acceleration a_st is computed once per refresh_interval x that limit; pass 1
+// still runs at the corrector's stage of every step, so that shifting's grad C and div r stay
+// current.
+// Between refreshes a_st is extrapolated linearly from the last two refreshes (SurfaceFields::
+// extrapolate), not held: a held force lags a capillary oscillation of frequency w by about half
+// the interval, and a restoring force that lags does work on the mode at a rate of order
+// w^2 x lag, which for the shortest capillary waves rivals their viscous damping (nu k^2). Held,
+// interval 0.25 raised droplet_3d's parasitic speed by 30%; extrapolated, it stays within the
+// draws of the every-step run up to interval 0.5 (docs/validation.md, "The held acceleration
+// extrapolated").
 #pragma once
 
 #include <limits>

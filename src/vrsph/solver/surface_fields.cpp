@@ -1,5 +1,6 @@
 // SurfaceFields' own bookkeeping: sizing, and the held fields that follow their particles through
 // sorts, compactions and appends (solver/surface_pass.hpp).
+#include "vrsph/exec/parallel.hpp"
 #include "vrsph/solver/surface_pass.hpp"
 
 namespace vrsph {
@@ -35,6 +36,8 @@ void SurfaceFields<D>::compact_held(const std::vector<std::uint8_t>& keep) {
   keep_entries(normal, keep);
   keep_entries(curvature, keep);
   keep_entries(acc_st, keep);
+  keep_entries(acc_ref, keep);
+  keep_entries(acc_rate, keep);
 }
 
 template <int D>
@@ -44,6 +47,30 @@ void SurfaceFields<D>::fit_held(std::size_t n) {
   normal.resize(n, Vec<D>{});
   curvature.resize(n, 0.0);
   acc_st.resize(n, Vec<D>{});
+  if (!acc_ref.empty()) {  // a created particle: nothing held, no rate
+    acc_ref.resize(n, Vec<D>{});
+    acc_rate.resize(n, Vec<D>{});
+  }
+}
+
+template <int D>
+void SurfaceFields<D>::take_refresh(double since_last) {
+  const std::size_t n = acc_st.size();
+  const bool rate = since_last > 0.0 && acc_ref.size() == n;
+  acc_rate.resize(n);
+  acc_ref.resize(n);
+  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+    const bool both = norm2(acc_st[i]) > 0.0 && norm2(acc_ref[i]) > 0.0;
+    acc_rate[i] = rate && both ? (acc_st[i] - acc_ref[i]) * (1.0 / since_last) : Vec<D>{};
+    acc_ref[i] = acc_st[i];
+  });
+}
+
+template <int D>
+void SurfaceFields<D>::extrapolate(double tau) {
+  if (acc_ref.size() != acc_st.size()) return;  // nothing refreshed yet
+  exec::for_each(static_cast<std::int64_t>(acc_st.size()),
+                 [&](std::int64_t i) { acc_st[i] = acc_ref[i] + acc_rate[i] * tau; });
 }
 
 template struct SurfaceFields<2>;

@@ -31,6 +31,10 @@ struct SurfaceFields {
   std::vector<Vec<D>> normal;     // unit outward normal, or 0
   std::vector<double> curvature;  // kappa_i
   std::vector<Vec<D>> acc_st;     // surface-tension acceleration
+  // The capillary refresh's hold (sim/surface_refresh.hpp): the acceleration of the last refresh
+  // and its rate of change since the refresh before, per particle; between refreshes acc_st is
+  // extrapolated from them.
+  std::vector<Vec<D>> acc_ref, acc_rate;
 
   // The columns the passes read when called without a level's packed columns (filled by the
   // four-argument surface_sums), and lambda (pass 2) and the normal (pass 3) as columns for the
@@ -69,11 +73,19 @@ struct SurfaceFields {
     grid.carry(normal);
     grid.carry(curvature);
     grid.carry(acc_st);
+    grid.carry(acc_ref);
+    grid.carry(acc_rate);
   }
   // Keeps the entries with keep[i] != 0 (ParticleSet::compact), then sizes to n (new particles
   // get zeros: a created particle holds no capillary acceleration until the next refresh).
   void compact_held(const std::vector<std::uint8_t>& keep);
   void fit_held(std::size_t n);
+  // After a refresh (pass 3 wrote acc_st): acc_rate = (acc_st - acc_ref) / since_last where both
+  // are non-zero (0 where either is, and everywhere for since_last <= 0 or NaN: no refresh
+  // before), then acc_ref = acc_st.
+  void take_refresh(double since_last);
+  // Between refreshes: acc_st = acc_ref + tau acc_rate, tau the time since the last refresh.
+  void extrapolate(double tau);
 };
 
 // Pass 1: M_i (and lambda_i, L_i), grad C_i, div r_i and the Shepard sum, over fluid and wall
