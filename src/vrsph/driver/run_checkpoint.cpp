@@ -48,7 +48,8 @@ namespace {
 // The capillary refresh's held acceleration ("levelN.acc_st", D values per particle), the last
 // refresh's value and its rate ("levelN.acc_ref", "levelN.acc_rate"; SurfaceFields::extrapolate)
 // and the time of the last refresh of each clock: without them a resumed run would refresh at
-// once where the uninterrupted run did not.
+// once where the uninterrupted run did not. Where acc_ref is set, the next evaluation forms
+// acc_st anew from it (the acc_st written then is out of order and read by nothing).
 template <int D>
 std::vector<double> flat_of(const std::vector<Vec<D>>& a) {
   std::vector<double> flat;

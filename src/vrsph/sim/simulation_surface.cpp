@@ -28,7 +28,7 @@ void Simulation<D>::start_refresh_clocks() {
   const SurfaceTensionParams& st = spec_.numerics.surface_tension;
   const bool sigma = spec_.fluid.surface_tension > 0.0;
   if (sigma && local_)
-    for (Level<D>& L : levels_) L.sf.held = true;
+    for (Level<D>& L : levels_) L.sf.held = L.sf.held_geometry = true;
   if (!sigma || st.refresh != SurfaceRefresh::capillary) return;
   double dt_min = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < levels_.size(); ++k) {

@@ -32,9 +32,11 @@ void keep_entries(std::vector<T>& a, const std::vector<std::uint8_t>& keep) {
 template <int D>
 void SurfaceFields<D>::compact_held(const std::vector<std::uint8_t>& keep) {
   if (!held) return;
-  keep_entries(lambda, keep);
-  keep_entries(normal, keep);
-  keep_entries(curvature, keep);
+  if (held_geometry) {
+    keep_entries(lambda, keep);
+    keep_entries(normal, keep);
+    keep_entries(curvature, keep);
+  }
   keep_entries(acc_st, keep);
   keep_entries(acc_ref, keep);
   keep_entries(acc_rate, keep);
@@ -68,7 +70,8 @@ void SurfaceFields<D>::take_refresh(double since_last) {
 
 template <int D>
 void SurfaceFields<D>::extrapolate(double tau) {
-  if (acc_ref.size() != acc_st.size()) return;  // nothing refreshed yet
+  if (acc_ref.empty()) return;  // nothing refreshed yet: acc_st as held
+  acc_st.resize(acc_ref.size());
   exec::for_each(static_cast<std::int64_t>(acc_st.size()),
                  [&](std::int64_t i) { acc_st[i] = acc_ref[i] + acc_rate[i] * tau; });
 }

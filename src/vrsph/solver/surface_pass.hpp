@@ -62,17 +62,23 @@ struct SurfaceFields {
   void resize(std::size_t n);
 
   // Held fields. With the capillary refresh (sim/surface_refresh.hpp) passes 2 and 3 do not run
-  // at every force evaluation, and what they wrote must follow its particle until the next
-  // refresh: while `held`, the level's sorts, compactions and appends call these.
+  // at every force evaluation, and the capillary acceleration they wrote must follow its particle
+  // until the next refresh: while `held`, the level's sorts, compactions and appends call these.
+  // Once a refresh has set acc_ref, acc_st is formed anew from it at every evaluation and need
+  // not follow the sorts. lambda, the normal and the curvature follow only while `held_geometry` (local
+  // time stepping: a level's buffers read the other levels' fields between their passes).
   bool held = false;
+  bool held_geometry = false;
   // Reorders the held arrays after a sort of the level (CellGrid::carry).
   template <class Grid>
   void carry(Grid& grid) {
     if (!held) return;
-    grid.carry(lambda);
-    grid.carry(normal);
-    grid.carry(curvature);
-    grid.carry(acc_st);
+    if (held_geometry) {
+      grid.carry(lambda);
+      grid.carry(normal);
+      grid.carry(curvature);
+    }
+    if (acc_ref.empty()) grid.carry(acc_st);
     grid.carry(acc_ref);
     grid.carry(acc_rate);
   }
