@@ -65,8 +65,8 @@ struct SurfaceFields {
   // at every force evaluation, and the capillary acceleration they wrote must follow its particle
   // until the next refresh: while `held`, the level's sorts, compactions and appends call these.
   // Once a refresh has set acc_ref, acc_st is formed anew from it at every evaluation and need
-  // not follow the sorts. lambda, the normal and the curvature follow only while `held_geometry` (local
-  // time stepping: a level's buffers read the other levels' fields between their passes).
+  // not follow the sorts. lambda, the normal and the curvature follow only while `held_geometry`
+  // (local time stepping: a level's buffers read the other levels' fields between their passes).
   bool held = false;
   bool held_geometry = false;
   // Reorders the held arrays after a sort of the level (CellGrid::carry).
