@@ -19,9 +19,10 @@ double now_seconds() {
 
 // The capillary refresh: the interval is refresh_interval capillary limits of the level's own h
 // (local time stepping), or of the finest level (one clock for all levels: clock 0); every level
-// then holds its fields. With local time stepping the fields are held also when they are
-// refreshed at every evaluation: a level's buffers read the other levels' lambda and normal
-// between those levels' own passes.
+// then holds its capillary acceleration (SurfaceFields::held). With local time stepping lambda,
+// the normal and the curvature are held too (held_geometry), also when they are refreshed at
+// every evaluation: a level's buffers read the other levels' lambda and normal between those
+// levels' own passes.
 template <int D>
 void Simulation<D>::start_refresh_clocks() {
   refresh_.assign(levels_.size(), RefreshClock());
@@ -55,9 +56,9 @@ void Simulation<D>::surface_passes(bool capillary) {
 }
 
 // The surface fields a force evaluation at t_eval needs. The capillary acceleration: at every
-// evaluation, or when the refresh clock says so (held in between). Pass 1 alone: at the
-// corrector's stage, for shifting's grad C and div r; the first stage's pass 1 would feed
-// nothing but passes 2 and 3.
+// evaluation, or when the refresh clock says so (extrapolated from the last two refreshes in
+// between, SurfaceFields::extrapolate). Pass 1 alone: at the corrector's stage, for shifting's
+// grad C and div r; the first stage's pass 1 would feed nothing but passes 2 and 3.
 template <int D>
 void Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
   if (!has_surface_fields()) return;
