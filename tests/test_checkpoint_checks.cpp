@@ -1,6 +1,6 @@
 // The checks that keep a run's folder and checkpoint sound, in-process: a checkpoint with a
 // damaged byte, a cut or extra bytes is refused naming the file and the record; the case check
-// names the key that changed; the lock of an output folder goes to exactly one of many starts
+// names the key that changed; per-particle vectors beside the field list round-trip or are refused; the lock of an output folder goes to exactly one of many starts
 // and is taken over when its holder died; leftovers of atomic writes are told from other files.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -64,6 +64,33 @@ std::string load_error(const fs::path& path) {
     return e.what();
   }
   return "";
+}
+
+// Per-particle vectors beside the field list (the capillary refresh's held acceleration): they
+// come back as written; an absent record leaves the array, an empty one empties it, and a record
+// of another size is refused naming it.
+TEST(CheckpointChecks, HeldVectorsComeBackOrAreRefusedNamingTheRecord) {
+  Checkpoint ck;
+  const std::vector<Vec<2>> a = {Vec<2>{1.0, -2.0}, Vec<2>{3.5, 0.25}};
+  ck.put_vectors<2>("level0.acc_ref", a);
+  ck.put_vectors<2>("level0.acc_rate", std::vector<Vec<2>>{});
+  std::vector<Vec<2>> b;
+  ck.get_vectors<2>("level0.acc_ref", 2, b);
+  ASSERT_EQ(b.size(), 2u);
+  EXPECT_EQ(b[1][0], 3.5);
+  EXPECT_EQ(b[0][1], -2.0);
+  ck.get_vectors<2>("level0.absent", 2, b);
+  EXPECT_EQ(b.size(), 2u);
+  ck.get_vectors<2>("level0.acc_rate", 2, b);
+  EXPECT_TRUE(b.empty());
+  try {
+    ck.get_vectors<2>("level0.acc_ref", 3, b);
+    ADD_FAILURE() << "a record of 2 vectors read as 3";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("level0.acc_ref: 4 values for 3 particles"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(CheckpointChecks, FnvMatchesItsPublishedValues) {

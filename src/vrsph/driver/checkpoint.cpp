@@ -162,6 +162,31 @@ void Checkpoint::get_particles(int level, ParticleSet<D>& ps) const {
   ps.share_mass_if_uniform();
 }
 
+template <int D>
+void Checkpoint::put_vectors(const std::string& name, const std::vector<Vec<D>>& v) {
+  put(name, to_record(v));
+}
+
+template <int D>
+void Checkpoint::get_vectors(const std::string& name, std::size_t n, std::vector<Vec<D>>& v) const {
+  if (!has(name)) return;
+  const auto& r = f64(name);
+  if (r.empty()) {
+    v.clear();
+    return;
+  }
+  if (r.size() != n * D)
+    throw CheckpointError(fmt::format("{}: {} values for {} particles", name, r.size(), n));
+  v.assign(n, Vec<D>{});
+  from_record(r, v);
+}
+
+template void Checkpoint::put_vectors<2>(const std::string&, const std::vector<Vec<2>>&);
+template void Checkpoint::put_vectors<3>(const std::string&, const std::vector<Vec<3>>&);
+template void Checkpoint::get_vectors<2>(const std::string&, std::size_t,
+                                         std::vector<Vec<2>>&) const;
+template void Checkpoint::get_vectors<3>(const std::string&, std::size_t,
+                                         std::vector<Vec<3>>&) const;
 template void Checkpoint::put_particles<2>(int, const ParticleSet<2>&);
 template void Checkpoint::put_particles<3>(int, const ParticleSet<3>&);
 template void Checkpoint::get_particles<2>(int, ParticleSet<2>&) const;

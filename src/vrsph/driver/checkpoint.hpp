@@ -66,6 +66,14 @@ class Checkpoint {
   template <int D>
   void get_particles(int level, ParticleSet<D>& ps) const;
 
+  // One vector per particle as a flattened record (D values each), beside the field list's.
+  // get_vectors: an absent record leaves v as it is, an empty one empties it; any other size
+  // than n D values is a CheckpointError.
+  template <int D>
+  void put_vectors(const std::string& name, const std::vector<Vec<D>>& v);
+  template <int D>
+  void get_vectors(const std::string& name, std::size_t n, std::vector<Vec<D>>& v) const;
+
  private:
   template <class T>
   const std::vector<T>& get(const std::string& name) const;

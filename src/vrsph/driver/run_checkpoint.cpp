@@ -51,41 +51,16 @@ namespace {
 // once where the uninterrupted run did not. Where acc_ref is set, the next evaluation forms
 // acc_st anew from it (the acc_st written then is out of order and read by nothing).
 template <int D>
-std::vector<double> flat_of(const std::vector<Vec<D>>& a) {
-  std::vector<double> flat;
-  flat.reserve(a.size() * D);
-  for (const Vec<D>& v : a)
-    for (int k = 0; k < D; ++k) flat.push_back(v[k]);
-  return flat;
-}
-
-template <int D>
 void put_held_fields(Checkpoint& ck, const Simulation<D>& sim) {
   std::vector<double> last;
   for (const RefreshClock& c : sim.refresh_clocks()) last.push_back(c.last());
   ck.put("surface.refresh_times", last);
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     const auto& sf = sim.level(l).sf;
-    ck.put(fmt::format("level{}.acc_st", l), flat_of<D>(sf.acc_st));
-    ck.put(fmt::format("level{}.acc_ref", l), flat_of<D>(sf.acc_ref));
-    ck.put(fmt::format("level{}.acc_rate", l), flat_of<D>(sf.acc_rate));
+    ck.put_vectors<D>(fmt::format("level{}.acc_st", l), sf.acc_st);
+    ck.put_vectors<D>(fmt::format("level{}.acc_ref", l), sf.acc_ref);
+    ck.put_vectors<D>(fmt::format("level{}.acc_rate", l), sf.acc_rate);
   }
-}
-
-// Reads key into a (empty: left empty; absent, as in checkpoints written before the rate: left
-// as it is).
-template <int D>
-void get_vectors(const Checkpoint& ck, const std::string& key, std::size_t n,
-                 std::vector<Vec<D>>& a) {
-  if (!ck.has(key)) return;
-  const auto& flat = ck.f64(key);
-  a.clear();
-  if (flat.empty()) return;
-  if (flat.size() != n * D)
-    throw CheckpointError(fmt::format("{}: {} values for {} particles", key, flat.size(), n));
-  a.assign(n, Vec<D>{});
-  for (std::size_t i = 0; i < n; ++i)
-    for (int k = 0; k < D; ++k) a[i][k] = flat[i * D + k];
 }
 
 // A checkpoint without them (written with refresh = "every_step" before) refreshes at once.
@@ -99,10 +74,11 @@ void get_held_fields(const Checkpoint& ck, Simulation<D>& sim) {
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     auto& L = sim.level(l);
     const std::size_t n = L.ps.size();
-    if (ck.f64(fmt::format("level{}.acc_st", l)).empty()) continue;  // no refresh yet
-    get_vectors<D>(ck, fmt::format("level{}.acc_st", l), n, L.sf.acc_st);
-    get_vectors<D>(ck, fmt::format("level{}.acc_ref", l), n, L.sf.acc_ref);
-    get_vectors<D>(ck, fmt::format("level{}.acc_rate", l), n, L.sf.acc_rate);
+    const std::string acc_st = fmt::format("level{}.acc_st", l);
+    if (ck.f64(acc_st).empty()) continue;  // no refresh yet
+    ck.get_vectors<D>(acc_st, n, L.sf.acc_st);
+    ck.get_vectors<D>(fmt::format("level{}.acc_ref", l), n, L.sf.acc_ref);
+    ck.get_vectors<D>(fmt::format("level{}.acc_rate", l), n, L.sf.acc_rate);
   }
   for (std::size_t k = 0; k < last.size(); ++k) sim.restore_refresh(k, last[k]);
 }
