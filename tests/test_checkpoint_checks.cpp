@@ -1,7 +1,8 @@
 // The checks that keep a run's folder and checkpoint sound, in-process: a checkpoint with a
-// damaged byte, a cut or extra bytes is refused naming the file and the record; the case check
-// names the key that changed; per-particle vectors beside the field list round-trip or are refused; the lock of an output folder goes to exactly one of many starts
-// and is taken over when its holder died; leftovers of atomic writes are told from other files.
+// damaged byte, a cut or extra bytes is refused naming the file and the record; per-particle
+// vectors beside the field list round-trip or are refused; the case check names the key that
+// changed; the lock of an output folder goes to exactly one of many starts and is taken over when
+// its holder died; leftovers of atomic writes are told from other files.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
