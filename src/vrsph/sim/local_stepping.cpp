@@ -181,7 +181,8 @@ void Simulation<D>::step_one_level(std::size_t k, double t0, double dt) {
 }
 
 // One force evaluation of level k at t_eval; at the corrector stage the net force the
-// corrections remove is added to the impulse, times the step's dt.
+// corrections remove is added to the impulse, times the step's dt. The buffer particles'
+// reaction (vres_conserve_momentum) feeds only that impulse: the predictor's stage skips it.
 template <int D>
 ForceStats Simulation<D>::evaluate_level(std::size_t k, double t_eval, bool corrector_stage,
                                          double dt) {
@@ -190,7 +191,7 @@ ForceStats Simulation<D>::evaluate_level(std::size_t k, double t_eval, bool corr
   surface_fields_level(k, t_eval, corrector_stage);
   const double t0 = now_seconds();
   const bool st = L.prm.sigma > 0.0;
-  const ForceStats s = level_forces(L, st, coupling_.wants_buffer_reaction());
+  const ForceStats s = level_forces(L, st, corrector_stage && coupling_.wants_buffer_reaction());
   if (corrector_stage && coupling_.corrects_net_force(st))
     impulse_ += dt * coupling_.net_force(levels_, k, st);
   times_.forces += now_seconds() - t0;

@@ -10,6 +10,15 @@
 namespace vrsph {
 namespace {
 
+// Whether a level's particles changed since its last sort: buffers moved apart, particles
+// created or deleted. Kind changes alone keep the order (buffer and fluid particles share the
+// grid's fluid group), and the stable sort of particles that did not move is the identity, so
+// the sort after the kind updates is skipped then (about one level step in several creates or
+// deletes anything on the shipped VR drop).
+bool changed_since_sort(std::size_t moved, const CouplingTally& tally) {
+  return moved > 0 || tally.created > 0 || tally.deleted > 0;
+}
+
 // Reach, in h of the level, of a buffer particle's own lambda and normal (see
 // exchange_buffer_field).
 constexpr double kBufferLambdaReach = 1.0;
@@ -191,10 +200,11 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  for (Level<D>& L : levels) space_buffers(L, opt_.buffer_spacing);
+  std::size_t moved = 0;
+  for (Level<D>& L : levels) moved += space_buffers(L, opt_.buffer_spacing);
   accumulate_and_create(levels, links_, dt, entry_depth(), donor_rule(), next_id, tally);
   for (std::size_t l = 0; l < levels.size(); ++l) update_kinds(levels[l], links_[l], tally);
-  sort();
+  if (changed_since_sort(moved, tally)) sort();
   if (interpolate_buffers(levels, links_, tally, donor_rule()) > 0) sort();
   if (opt_.conserve_momentum) {
     const Vec<D> dp = fluid_momentum(levels, mass) - p_before;
@@ -232,11 +242,11 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
   if (!multi_level()) return tally;
   double mass = 0.0;
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
-  space_buffers(levels[l], opt_.buffer_spacing);
+  const std::size_t moved = space_buffers(levels[l], opt_.buffer_spacing);
   accumulate_and_create_level(levels, links_[l], l, dt, donor_a, entry_depth(), donor_rule(),
                               next_id, tally);
   update_kinds(levels[l], links_[l], tally);
-  sort();
+  if (changed_since_sort(moved, tally)) sort();
   if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donor_a) > 0) sort();
   if (opt_.conserve_momentum) remove_impulse(levels, fluid_momentum(levels, mass) - p_before);
   return tally;
