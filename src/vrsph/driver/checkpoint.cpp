@@ -181,6 +181,14 @@ void Checkpoint::get_vectors(const std::string& name, std::size_t n, std::vector
   from_record(r, v);
 }
 
+void Checkpoint::get_values(const std::string& name, std::size_t n, std::vector<double>& v) const {
+  if (!has(name)) return;
+  const auto& r = f64(name);
+  if (!r.empty() && r.size() != n)
+    throw CheckpointError(fmt::format("{}: {} values for {} particles", name, r.size(), n));
+  v = r;
+}
+
 template void Checkpoint::put_vectors<2>(const std::string&, const std::vector<Vec<2>>&);
 template void Checkpoint::put_vectors<3>(const std::string&, const std::vector<Vec<3>>&);
 template void Checkpoint::get_vectors<2>(const std::string&, std::size_t,

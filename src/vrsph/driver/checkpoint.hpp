@@ -73,6 +73,8 @@ class Checkpoint {
   void put_vectors(const std::string& name, const std::vector<Vec<D>>& v);
   template <int D>
   void get_vectors(const std::string& name, std::size_t n, std::vector<Vec<D>>& v) const;
+  // The same for one value per particle (written with put).
+  void get_values(const std::string& name, std::size_t n, std::vector<double>& v) const;
 
  private:
   template <class T>

@@ -49,7 +49,9 @@ namespace {
 // refresh's value and its rate ("levelN.acc_ref", "levelN.acc_rate"; SurfaceFields::extrapolate)
 // and the time of the last refresh of each clock: without them a resumed run would refresh at
 // once where the uninterrupted run did not. Where acc_ref is set, the next evaluation forms
-// acc_st anew from it (the acc_st written then is out of order and read by nothing).
+// acc_st anew from it (the acc_st written then is out of order and read by nothing). With local
+// time stepping also the held lambda, normal and curvature ("levelN.lambda", "levelN.normal",
+// "levelN.curvature"), which the other levels' buffers read between this level's refreshes.
 template <int D>
 void put_held_fields(Checkpoint& ck, const Simulation<D>& sim) {
   std::vector<double> last;
@@ -60,6 +62,10 @@ void put_held_fields(Checkpoint& ck, const Simulation<D>& sim) {
     ck.put_vectors<D>(fmt::format("level{}.acc_st", l), sf.acc_st);
     ck.put_vectors<D>(fmt::format("level{}.acc_ref", l), sf.acc_ref);
     ck.put_vectors<D>(fmt::format("level{}.acc_rate", l), sf.acc_rate);
+    if (!sf.held_geometry) continue;
+    ck.put(fmt::format("level{}.lambda", l), sf.lambda);
+    ck.put_vectors<D>(fmt::format("level{}.normal", l), sf.normal);
+    ck.put(fmt::format("level{}.curvature", l), sf.curvature);
   }
 }
 
@@ -79,6 +85,9 @@ void get_held_fields(const Checkpoint& ck, Simulation<D>& sim) {
     ck.get_vectors<D>(acc_st, n, L.sf.acc_st);
     ck.get_vectors<D>(fmt::format("level{}.acc_ref", l), n, L.sf.acc_ref);
     ck.get_vectors<D>(fmt::format("level{}.acc_rate", l), n, L.sf.acc_rate);
+    ck.get_values(fmt::format("level{}.lambda", l), n, L.sf.lambda);
+    ck.get_vectors<D>(fmt::format("level{}.normal", l), n, L.sf.normal);
+    ck.get_values(fmt::format("level{}.curvature", l), n, L.sf.curvature);
   }
   for (std::size_t k = 0; k < last.size(); ++k) sim.restore_refresh(k, last[k]);
 }

@@ -164,7 +164,7 @@ class Simulation {
   void check_dt() const;
   ForceStats evaluate_forces(double t_eval, bool corrector_stage);
   void surface_fields_all(double t_eval, bool corrector_stage);
-  void surface_passes(bool capillary);
+  void surface_passes(bool capillary, bool full);
   void start_refresh_clocks();
   // Local time stepping (sim/local_stepping.cpp).
   void start_local_stepping();

@@ -44,10 +44,17 @@ void Simulation<D>::start_refresh_clocks() {
 
 // The surface passes of every level, each pass on all levels before the next, so that the
 // coupling can give buffer particles lambda (after pass 1) and the normal (after pass 2) from the
-// other level before the next pass uses them. Passes 2 and 3 only when `capillary`.
+// other level before the next pass uses them. Passes 2 and 3 only when `capillary`; without them
+// pass 1 serves shifting alone, and the force pass sums what the fluid particles need of it
+// (surface_pass_shifting_sums), unless `full` (outputs: every field).
 template <int D>
-void Simulation<D>::surface_passes(bool capillary) {
-  for (Level<D>& L : levels_) surface_pass_sums(L);
+void Simulation<D>::surface_passes(bool capillary, bool full) {
+  for (Level<D>& L : levels_) {
+    if (capillary || full)
+      surface_pass_sums(L);
+    else
+      surface_pass_shifting_sums(L);
+  }
   if (!capillary) return;
   coupling_.after_surface_sums(levels_);
   for (Level<D>& L : levels_) surface_pass_normals(L);
@@ -70,7 +77,7 @@ void Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
   const bool shifting = levels_[0].prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return;
   const double t0 = now_seconds();
-  surface_passes(capillary);
+  surface_passes(capillary, false);
   if (capillary) {
     if (!clock.every_step())
       for (Level<D>& L : levels_) L.sf.take_refresh(t_eval - clock.last());
@@ -94,7 +101,10 @@ void Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corr
   const bool shifting = L.prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return;
   const double t0 = now_seconds();
-  surface_pass_sums(L);
+  if (capillary)
+    surface_pass_sums(L);
+  else
+    surface_pass_shifting_sums(L);
   if (capillary) {
     coupling_.after_surface_sums(levels_, k);
     surface_pass_normals(L);
@@ -118,7 +128,7 @@ void Simulation<D>::update_surface_fields() {
     for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
   }
   for (std::size_t k = 0; k < levels_.size(); ++k) pack(k);
-  surface_passes(has_surface_fields() && levels_[0].prm.sigma > 0.0);
+  surface_passes(has_surface_fields() && levels_[0].prm.sigma > 0.0, true);
   if (hold) {
     for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
   }
@@ -127,8 +137,8 @@ void Simulation<D>::update_surface_fields() {
 
 template void Simulation<2>::start_refresh_clocks();
 template void Simulation<3>::start_refresh_clocks();
-template void Simulation<2>::surface_passes(bool);
-template void Simulation<3>::surface_passes(bool);
+template void Simulation<2>::surface_passes(bool, bool);
+template void Simulation<3>::surface_passes(bool, bool);
 template void Simulation<2>::surface_fields_all(double, bool);
 template void Simulation<3>::surface_fields_all(double, bool);
 template void Simulation<2>::surface_fields_level(std::size_t, double, bool);

@@ -10,6 +10,7 @@
 #include "vrsph/physics/continuity.hpp"
 #include "vrsph/physics/density_diffusion.hpp"
 #include "vrsph/physics/pressure.hpp"
+#include "vrsph/physics/shifting.hpp"
 #include "vrsph/physics/viscosity.hpp"
 
 namespace vrsph {
@@ -36,17 +37,20 @@ struct Self {
 };
 
 // Sums of one particle over its spans: drho/dt (s0), pairs (s1), acceleration (s2..s1+D; a 2D
-// sweep sums no zero z component), and the viscous time-step measure (max).
+// sweep sums no zero z component), with kShift shifting's grad C (s2+D..s1+2D) and div r
+// (s2+2D), and the viscous time-step measure (max).
 struct ForceSums {
   double s[12] = {};
   double max_visc_dt = -1e300;
 };
 
 // The fluid particle i against one block: pressure, viscosity, continuity and (kWall: not with
-// wall neighbours) density diffusion. Everything the body reads is a value (exec/sweep.hpp).
+// wall neighbours) density diffusion; kShift: also shifting's grad C and div r, the terms of
+// surface pass 1 (solver/surface_pass.cpp) on the same geometry. Everything the body reads is a
+// value (exec/sweep.hpp).
 // T: the arithmetic of the pair terms (core/precision.hpp). Densities arrive as deviations
 // rho - rho0 (LevelColumns): rho = rho0 + deviation, exact in double.
-template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, class T>
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, bool kShift, class T>
 inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
   using C = ForceCol<D>;
   const T rho0 = static_cast<T>(prm.eos.rho0);
@@ -96,19 +100,34 @@ inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
     PairSumsT<T> s;  // drho/dt, pair count, acceleration, viscous dt measure
     s.s0 = dr, s.s1 = g.in, s.s2 = ax, s.s3 = ay;
     if constexpr (D == 3) s.s4 = az;
+    if constexpr (kShift) {
+      const T vf = vol_j * g.f;
+      if constexpr (D == 2) {
+        s.s4 = colour_gradient_pair(vf, g.rx);
+        s.s5 = colour_gradient_pair(vf, g.ry);
+        s.s6 = position_divergence_pair(vf, g.r2);
+      } else {
+        s.s5 = colour_gradient_pair(vf, g.rx);
+        s.s6 = colour_gradient_pair(vf, g.ry);
+        s.s7 = colour_gradient_pair(vf, g.rz);
+        s.s8 = position_divergence_pair(vf, g.r2);
+      }
+    }
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
   return pair;
 }
+template <int D, bool kShift>
+inline constexpr int kForceSums = 2 + D + (kShift ? D + 1 : 0);
 // The fluid particle i against the spans of its stencil in the state columns st.
-template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, class T>
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, bool kShift, class T>
 inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const StateRuns<D, T>& st,
                         const Span* spans, int count, ForceSums& out) {
   constexpr int K = kStateCols<D, T>;
-  sweep_spans<D, K, 2 + D, true, StateRuns<D, T>::kLo>(prm.kernel, me.x, st.base, spans, count,
-                                                       fluid_pair<D, VM, DM, kWall>(prm, me), out.s,
-                                                       out.max_visc_dt, me.x_lo);
+  sweep_spans<D, K, kForceSums<D, kShift>, true, StateRuns<D, T>::kLo>(
+      prm.kernel, me.x, st.base, spans, count, fluid_pair<D, VM, DM, kWall, kShift>(prm, me), out.s,
+      out.max_visc_dt, me.x_lo);
 }
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
@@ -169,9 +188,10 @@ Vec<D> acceleration(const ForceSums& s) {
   return a;
 }
 
-template <int D, ViscosityModel VM, DiffusionModel DM, class T>
+template <int D, ViscosityModel VM, DiffusionModel DM, class T, bool kShift>
 ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                      const LevelColumns<D>& cols, const Vec<D>* extra_acc, bool buffer_reaction) {
+                      const LevelColumns<D>& cols, const Vec<D>* extra_acc, bool buffer_reaction,
+                      const ShiftingSums<D>& shift) {
   if (grid.reach() > 4) throw std::invalid_argument("force pass: more than 4 cells per support");
   const auto& cells = grid.particle_cells();
   const StateRuns<D, T>& st = cols.template state_of<T>();
@@ -186,7 +206,7 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       // (buffer_reaction false) a buffer particle needs no neighbour at all.
       if (buffer_reaction) {
         sc.spans_of(grid, cells[i]);
-        fluid_sweep<D, VM, DM, false>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
+        fluid_sweep<D, VM, DM, false, false>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
       }
       ps.acc[i] = acceleration<D>(s);
       ps.drho[i] = 0.0;
@@ -199,8 +219,12 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       else
         wall_sweep<D, ForceCol<D>::vol>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
     } else {
-      fluid_sweep<D, VM, DM, false>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
-      fluid_sweep<D, VM, DM, true>(prm, me, st, sc.wall.span, sc.wall.count, s);
+      fluid_sweep<D, VM, DM, false, kShift>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
+      fluid_sweep<D, VM, DM, true, kShift>(prm, me, st, sc.wall.span, sc.wall.count, s);
+      if constexpr (kShift) {
+        for (int k = 0; k < D; ++k) shift.grad_c[i][k] = s.s[2 + D + k];
+        shift.div_r[i] = s.s[2 + 2 * D];
+      }
     }
     Vec<D> a = acceleration<D>(s);
     if (extra_acc != nullptr && ps.kind[i] != Kind::wall) a += extra_acc[i];
@@ -215,28 +239,32 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
   return {total.max_visc_dt, std::sqrt(total.max_acc2), total.pairs};
 }
 
-template <int D, ViscosityModel VM, class T>
+template <int D, ViscosityModel VM, class T, bool kShift>
 ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
                               const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                              const Vec<D>* extra, bool br) {
+                              const Vec<D>* extra, bool br, const ShiftingSums<D>& sh) {
   switch (prm.density_diffusion.model) {
     case DiffusionModel::none:
-      return force_pass<D, VM, DiffusionModel::none, T>(prm, ps, grid, cols, extra, br);
+      return force_pass<D, VM, DiffusionModel::none, T, kShift>(prm, ps, grid, cols, extra, br, sh);
     case DiffusionModel::molteni:
-      return force_pass<D, VM, DiffusionModel::molteni, T>(prm, ps, grid, cols, extra, br);
+      return force_pass<D, VM, DiffusionModel::molteni, T, kShift>(prm, ps, grid, cols, extra, br,
+                                                                   sh);
     case DiffusionModel::fourtakas:
-      return force_pass<D, VM, DiffusionModel::fourtakas, T>(prm, ps, grid, cols, extra, br);
+      return force_pass<D, VM, DiffusionModel::fourtakas, T, kShift>(prm, ps, grid, cols, extra,
+                                                                     br, sh);
   }
   return {};
 }
 
-template <int D, class T>
+template <int D, class T, bool kShift>
 ForceStats dispatch_viscosity(const SolverParams<D>& prm, ParticleSet<D>& ps,
                               const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                              const Vec<D>* extra, bool br) {
+                              const Vec<D>* extra, bool br, const ShiftingSums<D>& sh) {
   if (prm.viscosity.model == ViscosityModel::laminar)
-    return dispatch_diffusion<D, ViscosityModel::laminar, T>(prm, ps, grid, cols, extra, br);
-  return dispatch_diffusion<D, ViscosityModel::artificial, T>(prm, ps, grid, cols, extra, br);
+    return dispatch_diffusion<D, ViscosityModel::laminar, T, kShift>(prm, ps, grid, cols, extra, br,
+                                                                     sh);
+  return dispatch_diffusion<D, ViscosityModel::artificial, T, kShift>(prm, ps, grid, cols, extra,
+                                                                      br, sh);
 }
 
 }  // namespace
@@ -244,11 +272,17 @@ ForceStats dispatch_viscosity(const SolverParams<D>& prm, ParticleSet<D>& ps,
 template <int D>
 ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                                 const Vec<D>* extra_acc, bool buffer_reaction) {
+                                 const Vec<D>* extra_acc, bool buffer_reaction,
+                                 const ShiftingSums<D>* shift) {
   ps.acc.resize(ps.size());
   ps.drho.resize(ps.size());
   return with_pair_type(prm.precision, [&](auto t) {
-    return dispatch_viscosity<D, decltype(t)>(prm, ps, grid, cols, extra_acc, buffer_reaction);
+    using T = decltype(t);
+    if (shift != nullptr)
+      return dispatch_viscosity<D, T, true>(prm, ps, grid, cols, extra_acc, buffer_reaction,
+                                            *shift);
+    return dispatch_viscosity<D, T, false>(prm, ps, grid, cols, extra_acc, buffer_reaction,
+                                           ShiftingSums<D>{});
   });
 }
 
@@ -267,10 +301,10 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
 
 template ForceStats compute_forces_packed<2>(const SolverParams<2>&, ParticleSet<2>&,
                                              const CellGrid<2>&, const LevelColumns<2>&,
-                                             const Vec<2>*, bool);
+                                             const Vec<2>*, bool, const ShiftingSums<2>*);
 template ForceStats compute_forces_packed<3>(const SolverParams<3>&, ParticleSet<3>&,
                                              const CellGrid<3>&, const LevelColumns<3>&,
-                                             const Vec<3>*, bool);
+                                             const Vec<3>*, bool, const ShiftingSums<3>*);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&,

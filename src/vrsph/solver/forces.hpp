@@ -34,16 +34,28 @@ struct ForceStats {
 template <int D>
 using ForceWorkspace = LevelColumns<D>;
 
+// Where a force pass also writes particle shifting's sums of its fluid particles
+// (physics/shifting.hpp): grad C_i = sum_j V_j grad_i W_ij and div r_i = -sum_j V_j r_ij . grad_i
+// W_ij over fluid and wall neighbours, as surface pass 1 sums them (solver/surface_pass.hpp), in
+// the same order over the same candidates. One sweep then serves both on the evaluations where
+// pass 1 runs for shifting alone (surface_sums_for_shifting).
+template <int D>
+struct ShiftingSums {
+  Vec<D>* grad_c = nullptr;
+  double* div_r = nullptr;
+};
+
 // ps.acc and ps.drho for every particle (acc = 0 on walls) from the columns `cols`, packed from
 // ps (LevelColumns::pack). extra_acc (null: none) is a per-particle acceleration added to the
 // fluid's, e.g. surface tension; it counts in ForceStats::max_acc.
 // buffer_reaction: buffer particles get the acceleration their level's fluid and buffer
 // neighbours exert on them (vres/momentum.hpp measures the coupling's net force from it);
-// otherwise their acc is 0.
+// otherwise their acc is 0. shift (null: none): the fluid particles' shifting sums go there too.
 template <int D>
 ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                                 const Vec<D>* extra_acc = nullptr, bool buffer_reaction = false);
+                                 const Vec<D>* extra_acc = nullptr, bool buffer_reaction = false,
+                                 const ShiftingSums<D>* shift = nullptr);
 
 // The same, packing ps into ws first.
 template <int D>

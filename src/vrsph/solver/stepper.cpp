@@ -29,9 +29,18 @@ void surface_pass_curvature(Level<D>& L) {
 }
 
 template <int D>
+void surface_pass_shifting_sums(Level<D>& L) {
+  surface_sums_for_shifting(L.prm, L.ps, L.grid, L.cols, L.sf);
+}
+
+template <int D>
 ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction) {
+  const ShiftingSums<D> shift{L.sf.grad_c.data(), L.sf.div_r.data()};
+  const bool with_shift = L.sf.shifting_in_forces;
+  L.sf.shifting_in_forces = false;
   return compute_forces_packed(L.prm, L.ps, L.grid, L.cols,
-                               capillary ? L.sf.acc_st.data() : nullptr, buffer_reaction);
+                               capillary ? L.sf.acc_st.data() : nullptr, buffer_reaction,
+                               with_shift ? &shift : nullptr);
 }
 
 // Predictor (dt/2): x+ = x + dt/2 v, v+ = v + dt/2 (a + g), rho+ = rho + dt/2 drho.
@@ -157,6 +166,8 @@ template void pack_level<2>(Level<2>&);
 template void pack_level<3>(Level<3>&);
 template void surface_pass_sums<2>(Level<2>&);
 template void surface_pass_sums<3>(Level<3>&);
+template void surface_pass_shifting_sums<2>(Level<2>&);
+template void surface_pass_shifting_sums<3>(Level<3>&);
 template void surface_pass_normals<2>(Level<2>&);
 template void surface_pass_normals<3>(Level<3>&);
 template void surface_pass_curvature<2>(Level<2>&);

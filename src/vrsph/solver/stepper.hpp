@@ -21,13 +21,18 @@ void pack_level(Level<D>& L);
 // 2 (normals), 3 (curvature and capillary acceleration).
 template <int D>
 void surface_pass_sums(Level<D>& L);
+// Pass 1 for shifting alone (surface_sums_for_shifting): the level's next level_forces sums the
+// fluid particles' grad C and div r.
+template <int D>
+void surface_pass_shifting_sums(Level<D>& L);
 template <int D>
 void surface_pass_normals(Level<D>& L);
 template <int D>
 void surface_pass_curvature(Level<D>& L);
 
 // Pair forces on the packed columns, with the capillary acceleration added when `capillary`;
-// buffer_reaction as in compute_forces_packed.
+// buffer_reaction as in compute_forces_packed; with the fluid particles' shifting sums after
+// surface_pass_shifting_sums.
 template <int D>
 ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction);
 

@@ -90,9 +90,10 @@ void assemble_pass1(const double (&s)[12], Mat<D>& m, Vec<D>& grad_c) {
   }
 }
 
+// fluid_rows false: the fluid particles are left as they are (surface_sums_for_shifting).
 template <int D, class T>
 void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
-               const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
+               const LevelColumns<D>& cols, SurfaceFields<D>& sf, bool fluid_rows) {
   sf.resize(ps.size());
   using S = SurfaceColumns<D, 1, T>;
   const S src(cols, {volume_column<T>(cols)});
@@ -116,6 +117,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   };
   auto body = [&](std::int64_t ii, StencilSpans<D>& sp) {
     const auto i = static_cast<std::size_t>(ii);
+    if (!fluid_rows && ps.kind[i] == Kind::fluid) return;
     if (ps.kind[i] == Kind::wall) {  // no fields of its own: neutral values
       sf.lambda[i] = sf.div_r[i] = sf.shepard[i] = 0.0;
       sf.l_corr[i] = Mat<D>::identity();
@@ -330,7 +332,19 @@ template <int D>
 void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                   const LevelColumns<D>& cols, SurfaceFields<D>& sf) {
   with_pair_type(prm.precision,
-                 [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf); });
+                 [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, true); });
+}
+
+template <int D>
+bool surface_sums_for_shifting(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                               const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                               SurfaceFields<D>& sf) {
+  const bool in_forces = sf.cross.empty() && sf.h_wide.empty();
+  with_pair_type(prm.precision, [&](auto t) {
+    sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, !in_forces);
+  });
+  sf.shifting_in_forces = in_forces;
+  return in_forces;
 }
 
 template <int D>
@@ -367,6 +381,12 @@ template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, con
                               SurfaceFields<2>&);
 template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&,
                               const LevelColumns<2>&, SurfaceFields<2>&);
+template bool surface_sums_for_shifting<2>(const SolverParams<2>&, const ParticleSet<2>&,
+                                           const CellGrid<2>&, const LevelColumns<2>&,
+                                           SurfaceFields<2>&);
+template bool surface_sums_for_shifting<3>(const SolverParams<3>&, const ParticleSet<3>&,
+                                           const CellGrid<3>&, const LevelColumns<3>&,
+                                           SurfaceFields<3>&);
 template void surface_normals<2>(const SolverParams<2>&, const ParticleSet<2>&, const CellGrid<2>&,
                                  const LevelColumns<2>&, SurfaceFields<2>&);
 template void surface_curvature_force<2>(const SolverParams<2>&, const ParticleSet<2>&,

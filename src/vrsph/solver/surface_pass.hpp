@@ -69,6 +69,9 @@ struct SurfaceFields {
   // (local time stepping: a level's buffers read the other levels' fields between their passes).
   bool held = false;
   bool held_geometry = false;
+  // Set by surface_sums_for_shifting: the next force pass sums the fluid particles' grad C and
+  // div r (and clears it).
+  bool shifting_in_forces = false;
   // Reorders the held arrays after a sort of the level (CellGrid::carry).
   template <class Grid>
   void carry(Grid& grid) {
@@ -100,6 +103,17 @@ struct SurfaceFields {
 template <int D>
 void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
                   const LevelColumns<D>& cols, SurfaceFields<D>& sf);
+// Pass 1 for shifting alone (an evaluation without a capillary refresh): the sums of the particles
+// that are not fluid (buffer particles shift too; walls get neutral values), and sets
+// sf.shifting_in_forces: the fluid particles' grad C and div r are then summed by the level's
+// next force pass (solver/forces.hpp, ShiftingSums), which visits the same neighbours at the same
+// positions, and their lambda, L, Shepard sum and G keep the values of the last full pass 1 (read
+// only by passes 2 and 3, which run after a full pass 1). Returns whether it did so: with fields
+// summed across levels (sf.cross, sf.h_wide) it runs the full pass 1 instead.
+template <int D>
+bool surface_sums_for_shifting(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                               const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                               SurfaceFields<D>& sf);
 // The same, packing positions and volumes into sf.own.
 template <int D>
 void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,
