@@ -113,7 +113,8 @@ TEST(ShiftingInForces, PassOneForShiftingLeavesFluidRowsToTheForcePass) {
   EXPECT_FALSE(L.sf.shifting_in_forces);
   double worst = 0.0;
   for (std::size_t i = 0; i < L.ps.size(); ++i)
-    if (L.ps.kind[i] == Kind::fluid) worst = std::max(worst, std::abs(L.sf.div_r[i] - full.div_r[i]));
+    if (L.ps.kind[i] == Kind::fluid)
+      worst = std::max(worst, std::abs(L.sf.div_r[i] - full.div_r[i]));
   EXPECT_LT(worst, 1e-13);
 }
 

@@ -44,6 +44,23 @@ struct ForceSums {
   double max_visc_dt = -1e300;
 };
 
+// Shifting's pair terms (physics/shifting.hpp) in the slots after the acceleration: grad C, div r.
+template <int D, class T>
+[[gnu::always_inline]] inline void add_shifting_pair(const PairGeometryT<T>& g, T vol_j,
+                                                     PairSumsT<T>& s) {
+  const T vf = vol_j * g.f;
+  if constexpr (D == 2) {
+    s.s4 = colour_gradient_pair(vf, g.rx);
+    s.s5 = colour_gradient_pair(vf, g.ry);
+    s.s6 = position_divergence_pair(vf, g.r2);
+  } else {
+    s.s5 = colour_gradient_pair(vf, g.rx);
+    s.s6 = colour_gradient_pair(vf, g.ry);
+    s.s7 = colour_gradient_pair(vf, g.rz);
+    s.s8 = position_divergence_pair(vf, g.r2);
+  }
+}
+
 // The fluid particle i against one block: pressure, viscosity, continuity and (kWall: not with
 // wall neighbours) density diffusion; kShift: also shifting's grad C and div r, the terms of
 // surface pass 1 (solver/surface_pass.cpp) on the same geometry. Everything the body reads is a
@@ -100,19 +117,7 @@ inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
     PairSumsT<T> s;  // drho/dt, pair count, acceleration, viscous dt measure
     s.s0 = dr, s.s1 = g.in, s.s2 = ax, s.s3 = ay;
     if constexpr (D == 3) s.s4 = az;
-    if constexpr (kShift) {
-      const T vf = vol_j * g.f;
-      if constexpr (D == 2) {
-        s.s4 = colour_gradient_pair(vf, g.rx);
-        s.s5 = colour_gradient_pair(vf, g.ry);
-        s.s6 = position_divergence_pair(vf, g.r2);
-      } else {
-        s.s5 = colour_gradient_pair(vf, g.rx);
-        s.s6 = colour_gradient_pair(vf, g.ry);
-        s.s7 = colour_gradient_pair(vf, g.rz);
-        s.s8 = position_divergence_pair(vf, g.r2);
-      }
-    }
+    if constexpr (kShift) add_shifting_pair<D>(g, vol_j, s);
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
@@ -250,8 +255,8 @@ ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
       return force_pass<D, VM, DiffusionModel::molteni, T, kShift>(prm, ps, grid, cols, extra, br,
                                                                    sh);
     case DiffusionModel::fourtakas:
-      return force_pass<D, VM, DiffusionModel::fourtakas, T, kShift>(prm, ps, grid, cols, extra,
-                                                                     br, sh);
+      return force_pass<D, VM, DiffusionModel::fourtakas, T, kShift>(prm, ps, grid, cols, extra, br,
+                                                                     sh);
   }
   return {};
 }
