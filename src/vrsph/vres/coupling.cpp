@@ -92,9 +92,10 @@ void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<
 template <int D>
 void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
   ParticleSet<D>& ps = L.ps;
-  std::vector<std::uint8_t> keep(ps.size(), 1);
+  std::vector<std::uint8_t> keep(ps.size(), 1);  // 0: delete; 2: kept, kind changed
   exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     if (ps.kind[i] == Kind::wall) return;
+    const Kind was = ps.kind[i];
     switch (link.region.classify(ps.pos[i]).zone) {
       case Zone::fluid:
         ps.kind[i] = Kind::fluid;
@@ -104,11 +105,13 @@ void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
         break;
       case Zone::outside:
         keep[i] = 0;
-        break;
+        return;
     }
+    if (ps.kind[i] != was) keep[i] = 2;
   });
   std::size_t removed = 0;  // the deleted mass summed in index order, as on one thread
   for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (keep[i] == 2) ++tally.kind_changes;
     if (keep[i]) continue;
     ++removed;
     tally.deleted_mass += ps.mass_of(i);

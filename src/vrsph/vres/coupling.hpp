@@ -39,6 +39,7 @@ struct DonorRule {
 struct CouplingTally {
   std::uint64_t created = 0;
   std::uint64_t deleted = 0;
+  std::uint64_t kind_changes = 0;  // fluid <-> buffer (update_kinds)
   double created_mass = 0.0;
   double deleted_mass = 0.0;
 };

@@ -19,6 +19,13 @@ bool changed_since_sort(std::size_t moved, const CouplingTally& tally) {
   return moved > 0 || tally.created > 0 || tally.deleted > 0;
 }
 
+// Whether the fluid set changed in the coupling: kinds, creations, deletions (a deletion of buffer
+// particles moves the fluid ones to other places of the sums). Where none did, the fluid momentum
+// after equals the one before bit for bit, and conserve_momentum has nothing to remove.
+bool fluid_changed(const CouplingTally& tally) {
+  return tally.kind_changes > 0 || tally.created > 0 || tally.deleted > 0;
+}
+
 // Reach, in h of the level, of a buffer particle's own lambda and normal (see
 // exchange_buffer_field).
 constexpr double kBufferLambdaReach = 1.0;
@@ -206,7 +213,7 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
   for (std::size_t l = 0; l < levels.size(); ++l) update_kinds(levels[l], links_[l], tally);
   if (changed_since_sort(moved, tally)) sort();
   if (interpolate_buffers(levels, links_, tally, donor_rule()) > 0) sort();
-  if (opt_.conserve_momentum) {
+  if (opt_.conserve_momentum && fluid_changed(tally)) {
     const Vec<D> dp = fluid_momentum(levels, mass) - p_before;
     if (mass > 0.0) add_to_fluid(levels, dp * (-1.0 / mass), true);
   }
@@ -248,7 +255,8 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
   update_kinds(levels[l], links_[l], tally);
   if (changed_since_sort(moved, tally)) sort();
   if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donor_a) > 0) sort();
-  if (opt_.conserve_momentum) remove_impulse(levels, fluid_momentum(levels, mass) - p_before);
+  if (opt_.conserve_momentum && fluid_changed(tally))
+    remove_impulse(levels, fluid_momentum(levels, mass) - p_before);
   return tally;
 }
 
