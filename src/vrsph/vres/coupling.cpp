@@ -1,5 +1,7 @@
 #include "vrsph/vres/coupling.hpp"
 
+#include <memory>
+
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/particles/within.hpp"
 #include "vrsph/vres/interpolation.hpp"
@@ -8,6 +10,24 @@ namespace vrsph {
 namespace {
 
 constexpr double kMinSpacing = 0.5;  // x dp: no particle is created closer than this to another
+
+// The donor states of every level but l, each at its fraction of its last step (donor_a), formed
+// once for all the points of level l that read them.
+template <int D>
+class DonorStates {
+ public:
+  DonorStates(const std::vector<Level<D>>& levels, std::size_t l, const std::vector<double>& a) {
+    for (std::size_t d = 0; d < levels.size(); ++d) {
+      const Level<D>& L = levels[d];
+      states_.push_back(d == l ? nullptr
+                               : std::make_unique<DonorState<D>>(L.ps, L.grid, L.prm.kernel, a[d]));
+    }
+  }
+  const DonorState<D>& operator[](int d) const { return *states_[static_cast<std::size_t>(d)]; }
+
+ private:
+  std::vector<std::unique_ptr<DonorState<D>>> states_;
+};
 
 // Mass the donor flow carries across a face element in dt: -rho (u . n) dA dt (n out of the
 // buffer, so inflow into the buffer is positive). Once the stored mass is negative only
@@ -48,12 +68,11 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
   std::vector<MassPoint<D>>& points = link.mass_points;
   const double m = L.prm.mass;
   std::vector<InterpolatedState<D>> st(points.size());
+  const DonorStates<D> donors(levels, l, donor_a);
   exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t q) {
     const MassPoint<D>& P = points[static_cast<std::size_t>(q)];
-    const auto d = static_cast<std::size_t>(P.donor);
-    const Level<D>& donor = levels[d];
-    st[static_cast<std::size_t>(q)] = interpolate_from_level<D>(
-        P.x, donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit, donor_a[d], rule.shepard_fill);
+    st[static_cast<std::size_t>(q)] =
+        interpolate_from_donor<D>(P.x, donors[P.donor], kVresCondLimit, rule.shepard_fill);
   });
   const std::size_t first_new = L.ps.size();
   for (std::size_t q = 0; q < points.size(); ++q) {
@@ -131,15 +150,13 @@ void buffer_values(std::vector<Level<D>>& levels, const LevelLink<D>& link, std:
                    std::vector<std::uint8_t>& keep) {
   ParticleSet<D>& ps = levels[l].ps;
   keep.assign(ps.size(), 1);
+  const DonorStates<D> donors(levels, l, donor_a);
   exec::for_each_dynamic(static_cast<std::int64_t>(ps.size()), 64, [&](std::int64_t ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] != Kind::buffer) return;
     const ZoneInfo<D> z = link.region.classify(ps.pos[i]);
-    const auto d = static_cast<std::size_t>(z.donor);
-    const Level<D>& donor = levels[d];
     const InterpolatedState<D> s =
-        interpolate_from_level<D>(ps.pos[i], donor.ps, donor.grid, donor.prm.kernel, kVresCondLimit,
-                                  donor_a[d], rule.shepard_fill);
+        interpolate_from_donor<D>(ps.pos[i], donors[z.donor], kVresCondLimit, rule.shepard_fill);
     // No donor fluid in reach, or (numerics.vres_buffer_fill_min > 0, not part of Ricci et
     // al.) outside the donor's free surface. Buffer particles follow the donor's velocity and
     // nothing pulls them back to its surface: without the second test, those carried beyond

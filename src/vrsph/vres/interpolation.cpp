@@ -38,46 +38,30 @@ struct DonorSums {
   }
 };
 
-// Donor j at the fraction a of its last step: the states at the step's start (pos0, vel0, rho0)
-// and end, linearly interpolated; a = 1 is the current state itself. The position first: most
-// candidates lie beyond the support and need nothing more.
 template <int D>
-inline Vec<D> donor_position(const ParticleSet<D>& ps, std::uint32_t j, double a) {
-  return a == 1.0 ? ps.pos[j] : ps.pos0[j] + a * (ps.pos[j] - ps.pos0[j]);
-}
-template <int D>
-struct DonorAt {
-  Vec<D> v{};
-  double rho = 0.0;
-};
-template <int D>
-inline DonorAt<D> donor_at(const ParticleSet<D>& ps, std::uint32_t j, double a) {
-  if (a == 1.0) return {ps.vel[j], ps.rho[j]};
-  return {ps.vel0[j] + a * (ps.vel[j] - ps.vel0[j]), ps.rho0[j] + a * (ps.rho[j] - ps.rho0[j])};
-}
-
-template <int D>
-InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donors,
-                                    const CellGrid<D>& grid, const WendlandC2<D>& kernel,
-                                    double cond_limit, double a, double shepard_fill) {
+InterpolatedState<D> interpolate_at(const Vec<D>& x, const DonorState<D>& dn, double cond_limit,
+                                    double shepard_fill) {
   InterpolatedState<D> out;
   std::int64_t c = 0;
-  if (donors.size() == 0 || !grid.stencil_cell(x, c)) return out;
+  const ParticleSet<D>& donors = dn.ps;
+  const WendlandC2<D>& kernel = dn.kernel;
+  if (donors.size() == 0 || !dn.grid.stencil_cell(x, c)) return out;
   DonorSums<D> s;
-  auto at = [&](std::uint32_t j) { return donor_position(donors, j, a); };
-  for_each_within(grid, c, Group::fluid, x, kernel.support2, at,
+  const Vec<D>* pos = dn.pos;
+  auto at = [pos](std::uint32_t j) { return pos[j]; };
+  for_each_within(dn.grid, c, Group::fluid, x, kernel.support2, at,
                   [&](std::uint32_t j, const Vec<D>& r, double r2) {
-                    const DonorAt<D> dj = donor_at(donors, j, a);
+                    const double rho_j = dn.rho[j];
                     if (donors.kind[j] != Kind::fluid) {  // buffer: counted in the fill only
-                      out.shepard_buffer += donors.mass_of(j) / dj.rho * kernel.w(std::sqrt(r2));
+                      out.shepard_buffer += donors.mass_of(j) / rho_j * kernel.w(std::sqrt(r2));
                       return;
                     }
-                    s.add(r, r2, donors.mass_of(j) / dj.rho, dj.rho, dj.v, kernel);
+                    s.add(r, r2, donors.mass_of(j) / rho_j, rho_j, dn.vel[j], kernel);
                   });
   out.shepard = s.a[0][0];
   out.div_r = s.div_r;
   auto now = [&](std::uint32_t j) { return donors.pos[j]; };
-  for_each_within(grid, c, Group::wall, x, kernel.support2, now,
+  for_each_within(dn.grid, c, Group::wall, x, kernel.support2, now,
                   [&](std::uint32_t j, const Vec<D>&, double r2) {
                     const double v = donors.mass_of(j) / donors.rho[j];
                     out.shepard_walls += v * kernel.w(std::sqrt(r2));
@@ -100,11 +84,37 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const ParticleSet<D>& donor
 
 }  // namespace
 
+// Donor j at the fraction a of its last step: the states at the step's start (pos0, vel0, rho0)
+// and end, linearly interpolated; a = 1 is the current state itself.
+template <int D>
+DonorState<D>::DonorState(const ParticleSet<D>& p, const CellGrid<D>& g, const WendlandC2<D>& k,
+                          double a)
+    : ps(p), grid(g), kernel(k), pos(p.pos.data()), vel(p.vel.data()), rho(p.rho.data()) {
+  if (a == 1.0 || p.size() == 0) return;
+  const std::size_t n = p.size();
+  pos_a_.resize(n);
+  vel_a_.resize(n);
+  rho_a_.resize(n);
+  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t j) {
+    pos_a_[j] = p.pos0[j] + a * (p.pos[j] - p.pos0[j]);
+    vel_a_[j] = p.vel0[j] + a * (p.vel[j] - p.vel0[j]);
+    rho_a_[j] = p.rho0[j] + a * (p.rho[j] - p.rho0[j]);
+  });
+  pos = pos_a_.data(), vel = vel_a_.data(), rho = rho_a_.data();
+}
+
+template <int D>
+InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>& donor,
+                                            double cond_limit, double shepard_fill) {
+  return interpolate_at(x, donor, cond_limit, shepard_fill);
+}
+
 template <int D>
 InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D>& donors,
                                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
                                             double cond_limit, double a, double shepard_fill) {
-  return interpolate_at(x, donors, grid, kernel, cond_limit, a, shepard_fill);
+  const DonorState<D> donor(donors, grid, kernel, a);
+  return interpolate_at(x, donor, cond_limit, shepard_fill);
 }
 
 template <int D, class T>
@@ -130,11 +140,18 @@ void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet
                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
                             std::vector<InterpolatedState<D>>& out, double cond_limit) {
   out.resize(points.size());
+  const DonorState<D> donor(donors, grid, kernel, 1.0);
   exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t i) {
-    out[i] = interpolate_at(points[i], donors, grid, kernel, cond_limit, 1.0, 0.0);
+    out[i] = interpolate_at(points[i], donor, cond_limit, 0.0);
   });
 }
 
+template class DonorState<2>;
+template class DonorState<3>;
+template InterpolatedState<2> interpolate_from_donor(const Vec<2>&, const DonorState<2>&, double,
+                                                     double);
+template InterpolatedState<3> interpolate_from_donor(const Vec<3>&, const DonorState<3>&, double,
+                                                     double);
 template InterpolatedState<2> interpolate_from_level(const Vec<2>&, const ParticleSet<2>&,
                                                      const CellGrid<2>&, const WendlandC2<2>&,
                                                      double, double, double);

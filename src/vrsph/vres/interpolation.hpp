@@ -81,7 +81,8 @@ inline double donor_fill(const InterpolatedState<D>& s) {
 
 // Values at point x from the Kind::fluid particles of a donor level (particle set, its cell grid
 // after a sort, its kernel). Points with no donor in reach (also beyond the particle cloud or
-// the domain) return shepard = 0. No heap allocation.
+// the domain) return shepard = 0. No heap allocation for a = 1 (a batch of points with a < 1
+// forms the donor state once: DonorState, interpolate_from_donor).
 // Local time stepping: `a` in [0, 1] is the time within the donor's last step, as a fraction of
 // it, and each donor's position, velocity and density are interpolated linearly between the
 // step's start (pos0, vel0, rho0) and its end; a = 1 (the default) reads the current state. The
@@ -95,6 +96,34 @@ InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D
                                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
                                             double cond_limit = kVresCondLimit, double a = 1.0,
                                             double shepard_fill = 0.0);
+
+// A donor level as a batch of interpolations reads it: the positions, velocities and densities of
+// its particles at the fraction a of its last step (as interpolate_from_level forms them), formed
+// once for all the points of the batch; for a = 1 the particle set's own arrays.
+template <int D>
+class DonorState {
+ public:
+  DonorState(const ParticleSet<D>& ps, const CellGrid<D>& grid, const WendlandC2<D>& kernel,
+             double a);
+  DonorState(const DonorState&) = delete;
+  DonorState& operator=(const DonorState&) = delete;
+
+  const ParticleSet<D>& ps;
+  const CellGrid<D>& grid;
+  const WendlandC2<D>& kernel;
+  const Vec<D>* pos = nullptr;
+  const Vec<D>* vel = nullptr;
+  const double* rho = nullptr;
+
+ private:
+  std::vector<Vec<D>> pos_a_, vel_a_;
+  std::vector<double> rho_a_;
+};
+
+// interpolate_from_level from a donor state: the same values, bit for bit.
+template <int D>
+InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>& donor,
+                                            double cond_limit, double shepard_fill);
 
 // The same for many points, in parallel (OpenMP, static schedule): out[i] for points[i]. out is
 // resized to points.size() (no allocation once it is large enough).
