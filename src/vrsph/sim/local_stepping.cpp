@@ -170,7 +170,9 @@ void Simulation<D>::step_one_level(std::size_t k, double t0, double dt) {
   counters_.particle_steps += L.ps.size();
   counters_.pairs += s.pairs;
   ++level_steps_[k];
-  sort_particles(L);
+  // The step copies stay with their particles only where children read this level between
+  // its step's start and end (DonorState); elsewhere they are dead until the next predictor.
+  sort_particles(L, !children_[k].empty());
   tu = now_seconds();
   const DtChoice c = level_dt(L, s, setup_.c0);
   level_dt_[k] = c.dt;
@@ -215,8 +217,9 @@ void Simulation<D>::couple_level(std::size_t k, double dt, double t) {
   if (!coupling_.multi_level()) return;
   const double t0 = now_seconds();
   Level<D>& L = levels_[k];
-  const CouplingTally tally = coupling_.after_level_step(
-      levels_, k, dt, donor_fractions(t), counters_.next_id, [this, &L] { sort_particles(L); });
+  const CouplingTally tally =
+      coupling_.after_level_step(levels_, k, dt, donor_fractions(t), counters_.next_id,
+                                 [this, &L] { sort_particles(L, false); });
   counters_.created += tally.created;
   counters_.deleted += tally.deleted;
   counters_.created_mass += tally.created_mass;

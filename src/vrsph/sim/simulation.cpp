@@ -216,7 +216,7 @@ template <int D>
 void Simulation<D>::couple_levels(double dt) {
   const double t0 = now_seconds();
   const CouplingTally tally =
-      coupling_.after_step(levels_, dt, counters_.next_id, [this] { sort_all(); });
+      coupling_.after_step(levels_, dt, counters_.next_id, [this] { sort_all(false); });
   counters_.created += tally.created;
   counters_.deleted += tally.deleted;
   counters_.created_mass += tally.created_mass;
@@ -254,7 +254,7 @@ void Simulation<D>::step() {
   for (Level<D>& L : levels_) damp_fluid_velocities(L, damping);
   times_.update += now_seconds() - t0;
   counters_.particle_steps += total_particles();
-  sort_all(coupling_.multi_level());  // step copies: read by the coupling only after the step
+  sort_all(false);  // the step copies are dead until the next predictor (one dt for all levels)
   if (coupling_.multi_level()) couple_levels(dt);
   t0 = now_seconds();
   advance_clock(plan, s);
