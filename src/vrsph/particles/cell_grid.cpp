@@ -61,7 +61,7 @@ struct NoScratch {};
 template <int D>
 void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
   const CellBounds b = exec::for_each_gather<NoScratch, CellBounds>(
-      static_cast<std::int64_t>(ps.size()), 4096, [&](std::int64_t i, NoScratch&, CellBounds& acc) {
+      static_cast<std::int64_t>(ps.size()), 1024, [&](std::int64_t i, NoScratch&, CellBounds& acc) {
         const auto& x = ps.pos[i];
         if (!inside(x)) return;
         for (int k = 0; k < D; ++k) {

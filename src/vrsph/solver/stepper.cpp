@@ -126,10 +126,16 @@ void damp_fluid_velocities(Level<D>& L, double factor) {
 
 template <int D>
 DtChoice level_dt(const Level<D>& L, const ForceStats& s, double c0) {
-  double vmax2 = 0.0;
-  for (std::size_t i = 0; i < L.ps.size(); ++i) {
-    if (L.ps.kind[i] != Kind::wall) vmax2 = std::max(vmax2, norm2(L.ps.vel[i]));
-  }
+  struct Max {
+    double v2 = 0.0;
+    void merge(const Max& o) { v2 = std::max(v2, o.v2); }
+  };
+  struct None {};
+  const Max vmax = exec::for_each_gather<None, Max>(
+      static_cast<std::int64_t>(L.ps.size()), 1024, [&](std::int64_t i, None&, Max& acc) {
+        if (L.ps.kind[i] != Kind::wall) acc.v2 = std::max(acc.v2, norm2(L.ps.vel[i]));
+      });
+  const double vmax2 = vmax.v2;
   const DtInputs in{L.prm.h,
                     L.prm.cfl,
                     c0,

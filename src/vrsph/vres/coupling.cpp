@@ -69,7 +69,9 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
   const double m = L.prm.mass;
   std::vector<InterpolatedState<D>> st(points.size());
   const DonorStates<D> donors(levels, l, donor_a);
-  exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t q) {
+  // Dynamic: the points beyond the fluid (most of a face that the flow does not fill) cost
+  // nothing, so equal halves of the list were unequal work.
+  exec::for_each_dynamic(static_cast<std::int64_t>(points.size()), 16, [&](std::int64_t q) {
     const MassPoint<D>& P = points[static_cast<std::size_t>(q)];
     st[static_cast<std::size_t>(q)] =
         interpolate_from_donor<D>(P.x, donors[P.donor], kVresCondLimit, rule.shepard_fill);

@@ -48,13 +48,15 @@ template <int D>
 Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
   Vec<D> lane_p[kLanes] = {};
   double lane_m[kLanes] = {};
-  for (const Level<D>& L : levels) {
-    for (std::size_t i = 0; i < L.ps.size(); ++i) {
-      if (L.ps.kind[i] != Kind::fluid) continue;
-      lane_p[i % kLanes] += L.ps.mass_of(i) * L.ps.vel[i];
-      lane_m[i % kLanes] += L.ps.mass_of(i);
+  exec::for_each(kLanes, [&](std::int64_t l) {  // the lanes in parallel, each in index order
+    for (const Level<D>& L : levels) {
+      for (std::size_t i = static_cast<std::size_t>(l); i < L.ps.size(); i += kLanes) {
+        if (L.ps.kind[i] != Kind::fluid) continue;
+        lane_p[l] += L.ps.mass_of(i) * L.ps.vel[i];
+        lane_m[l] += L.ps.mass_of(i);
+      }
     }
-  }
+  });
   Vec<D> p{};
   mass = 0.0;
   for (int l = 0; l < kLanes; ++l) p += lane_p[l], mass += lane_m[l];
@@ -65,11 +67,13 @@ Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
 template <int D>
 double fluid_mass(const std::vector<Level<D>>& levels) {
   double lane[kLanes] = {};
-  for (const Level<D>& L : levels) {
-    const std::size_t n = L.ps.size();
-    for (std::size_t i = 0; i < n; ++i)
-      lane[i % kLanes] += L.ps.kind[i] == Kind::fluid ? L.ps.mass_of(i) : 0.0;
-  }
+  exec::for_each(kLanes, [&](std::int64_t l) {
+    for (const Level<D>& L : levels) {
+      const std::size_t n = L.ps.size();
+      for (std::size_t i = static_cast<std::size_t>(l); i < n; i += kLanes)
+        lane[l] += L.ps.kind[i] == Kind::fluid ? L.ps.mass_of(i) : 0.0;
+    }
+  });
   double mass = 0.0;
   for (double m : lane) mass += m;
   return mass;
