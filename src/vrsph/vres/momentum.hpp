@@ -48,14 +48,19 @@ template <int D>
 Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
   Vec<D> lane_p[kLanes] = {};
   double lane_m[kLanes] = {};
-  exec::for_each(kLanes, [&](std::int64_t l) {  // the lanes in parallel, each in index order
+  // The lanes in parallel, each in index order into a local sum (a shared array written by two
+  // threads at every particle would bounce its cache line between them).
+  exec::for_each(kLanes, [&](std::int64_t l) {
+    Vec<D> p{};
+    double m = 0.0;
     for (const Level<D>& L : levels) {
       for (std::size_t i = static_cast<std::size_t>(l); i < L.ps.size(); i += kLanes) {
         if (L.ps.kind[i] != Kind::fluid) continue;
-        lane_p[l] += L.ps.mass_of(i) * L.ps.vel[i];
-        lane_m[l] += L.ps.mass_of(i);
+        p += L.ps.mass_of(i) * L.ps.vel[i];
+        m += L.ps.mass_of(i);
       }
     }
+    lane_p[l] = p, lane_m[l] = m;
   });
   Vec<D> p{};
   mass = 0.0;
@@ -68,11 +73,13 @@ template <int D>
 double fluid_mass(const std::vector<Level<D>>& levels) {
   double lane[kLanes] = {};
   exec::for_each(kLanes, [&](std::int64_t l) {
+    double m = 0.0;
     for (const Level<D>& L : levels) {
       const std::size_t n = L.ps.size();
       for (std::size_t i = static_cast<std::size_t>(l); i < n; i += kLanes)
-        lane[l] += L.ps.kind[i] == Kind::fluid ? L.ps.mass_of(i) : 0.0;
+        m += L.ps.kind[i] == Kind::fluid ? L.ps.mass_of(i) : 0.0;
     }
+    lane[l] = m;
   });
   double mass = 0.0;
   for (double m : lane) mass += m;
