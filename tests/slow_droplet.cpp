@@ -144,12 +144,11 @@ WindowError vr_window_error(const char* case_file, double expected) {
   return w;
 }
 
-// cases/droplet_vr_2d.toml (dp 1e-4 / 5e-5, 4h buffers, the case's options) to t = 0.5 s: the
-// window mean of the RMSE against the poster's VR figure, 0.7708 Pa. The drop keeps a shape
-// oscillation (mode n = 2, period 27 ms) stirred where the surface crosses the interface, so the
-// RMSE at one instant is a draw from a wide distribution (0.10-0.77 Pa over the window). The CLI
-// run measured a window mean of 0.348 Pa (1.48 Pa with vres_buffer_fill_min = 0;
-// docs/validation.md).
+// cases/droplet_vr_2d.toml (dp 1e-4 / 5e-5, 4h buffers, the case's options: rings, Shepard buffer
+// values) to t = 0.5 s: the window mean of the RMSE against the poster's VR figure, 0.7708 Pa.
+// The CLI runs of the case (two draws, build 9593495) measured window means of 0.42 and 0.45 Pa,
+// mean interior 36.82-36.85 Pa; the lattice start with first-order values it replaced, 2.15 Pa
+// and 38.2 Pa (docs/validation.md, "The shipped VR drop becomes the quiet combination").
 TEST(SlowDroplet, VariableResolutionBeatsThePosterRmse) {
   const WindowError w = vr_window_error("droplet_vr_2d.toml", 36.4);
   EXPECT_NEAR(w.mean_interior, 36.4, 0.03 * 36.4);

@@ -15,7 +15,9 @@ namespace vrsph {
 namespace {
 
 TEST(FluidSamples, TwoLevelDiameterUsesTheFinestCoveringLevel) {
-  CaseSpec spec = test::load_case("droplet_vr_2d.toml", {"fluid_block.0.pressure=36.4"});
+  CaseSpec spec = test::load_case("droplet_vr_2d.toml",
+                                  {"fluid_block.0.pressure=36.4", "fluid_block.0.fill=\"lattice\"",
+                                   "numerics.vres_shepard_fill=0"});
   Simulation<2> sim(spec);
   ASSERT_EQ(sim.level_count(), 2u);
   const double dp0 = sim.level(0).prm.dp, h0 = sim.level(0).prm.h, h1 = sim.level(1).prm.h;

@@ -153,9 +153,11 @@ TEST(SurfaceRefresh, OutputsDoNotChangeTheRun) {
 // and change kind while the held acceleration stays one entry per particle; the drop keeps its
 // Laplace pressure and the run does not depend on the thread count.
 TEST(SurfaceRefresh, VariableResolutionDropHoldsItsFieldsThroughKindChanges) {
-  CaseSpec spec = load_case("droplet_vr_2d.toml", with({"resolution.dp=2e-4", "case.end_time=0.004",
-                                                        "fluid_block.0.velocity=[0.1, 0]"},
-                                                       capillary(0.5)));
+  CaseSpec spec = load_case(
+      "droplet_vr_2d.toml",
+      with({"resolution.dp=2e-4", "case.end_time=0.004", "fluid_block.0.velocity=[0.1, 0]",
+            "fluid_block.0.fill=\"lattice\"", "numerics.vres_shepard_fill=0"},
+           capillary(0.5)));
   const int saved = omp_get_max_threads();
   std::vector<double> one;
   for (int threads : {1, 2}) {

@@ -25,7 +25,8 @@ struct BufferLambda {
 BufferLambda interior_buffer_lambda(const std::string& mode) {
   CaseSpec spec =
       load_case("droplet_vr_2d.toml",
-                {"resolution.dp=2e-4", "numerics.vres_buffer_surface=\"" + mode + "\""});
+                {"resolution.dp=2e-4", "fluid_block.0.fill=\"lattice\"",
+                 "numerics.vres_shepard_fill=0", "numerics.vres_buffer_surface=\"" + mode + "\""});
   Simulation<2> sim(spec);
   sim.update_surface_fields();
   BufferLambda out;
