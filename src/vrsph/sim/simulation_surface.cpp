@@ -65,7 +65,8 @@ void Simulation<D>::surface_passes(bool capillary, bool full) {
 // The surface fields a force evaluation at t_eval needs. The capillary acceleration: at every
 // evaluation, or when the refresh clock says so (extrapolated from the last two refreshes in
 // between, SurfaceFields::extrapolate). Pass 1 alone: at the corrector's stage, for shifting's
-// grad C and div r; the first stage's pass 1 would feed nothing but passes 2 and 3.
+// grad C and div r (over buffer particles only, the force pass summing the fluid's); the first
+// stage's pass 1 would feed nothing but passes 2 and 3.
 template <int D>
 void Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
   if (!has_surface_fields()) return;

@@ -2,9 +2,9 @@
 // et al. 2024). The normals, the curvature and the capillary acceleration change on the capillary
 // time scale, sqrt(rho h^3 / sigma), while the step is set by sound (dt = CFL h / c0): on the
 // shipped drops the capillary limit of solver/timestep.hpp is 4-10 acoustic steps. With
-// "capillary" the acceleration a_st is computed once per refresh_interval x that limit; pass 1
-// still runs at the corrector's stage of every step, so that shifting's grad C and div r stay
-// current.
+// "capillary" the acceleration a_st is computed once per refresh_interval x that limit;
+// shifting's grad C and div r are still summed at the corrector's stage of every step (by the
+// force pass where no refresh falls there: surface_sums_for_shifting), so they stay current.
 // Between refreshes a_st is extrapolated linearly from the last two refreshes (SurfaceFields::
 // extrapolate), not held: a held force lags a capillary oscillation of frequency w by about half
 // the interval, and a restoring force that lags does work on the mode at a rate of order
@@ -28,8 +28,8 @@ class RefreshClock {
   // Whether an evaluation at time t must refresh: always before the first refresh (and after a
   // resume from a checkpoint without held fields), then once the interval has passed. The small
   // tolerance absorbs the rounding of t as a sum of steps.
-  // Held refreshes fall on corrector stages only (there pass 1 runs anyway, for shifting), the
-  // very first one excepted.
+  // Held refreshes fall on corrector stages only (there shifting needs pass 1's grad C and div r
+  // anyway), the very first one excepted.
   bool due(double t, bool corrector_stage) const {
     if (every_step() || !valid_) return true;
     return corrector_stage && t >= last_ + interval_ * (1.0 - 1e-9);
