@@ -42,48 +42,46 @@ namespace vrsph {
 // a small drop's step.
 inline constexpr int kLanes = 4;
 
+// sum_i term(ps, i) over the fluid particles of all levels in the lanes above, the lanes in
+// parallel, each in index order into a local sum (a shared array written by two threads at every
+// particle would bounce its cache line between them), then added in lane order.
+template <class T, int D, class Term>
+T fluid_lane_sum(const std::vector<Level<D>>& levels, Term&& term) {
+  T lane[kLanes] = {};
+  exec::for_each(kLanes, [&](std::int64_t l) {
+    T sum{};
+    for (const Level<D>& L : levels)
+      for (std::size_t i = static_cast<std::size_t>(l); i < L.ps.size(); i += kLanes)
+        if (L.ps.kind[i] == Kind::fluid) sum += term(L.ps, i);
+    lane[l] = sum;
+  });
+  T total{};
+  for (const T& sum : lane) total += sum;
+  return total;
+}
+
 // Fluid momentum sum_i m_i v_i over all levels (buffer and wall particles excluded); mass gets
 // sum_i m_i, the same bits as fluid_mass.
 template <int D>
 Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
-  Vec<D> lane_p[kLanes] = {};
-  double lane_m[kLanes] = {};
-  // The lanes in parallel, each in index order into a local sum (a shared array written by two
-  // threads at every particle would bounce its cache line between them).
-  exec::for_each(kLanes, [&](std::int64_t l) {
+  struct MassMomentum {
     Vec<D> p{};
     double m = 0.0;
-    for (const Level<D>& L : levels) {
-      for (std::size_t i = static_cast<std::size_t>(l); i < L.ps.size(); i += kLanes) {
-        if (L.ps.kind[i] != Kind::fluid) continue;
-        p += L.ps.mass_of(i) * L.ps.vel[i];
-        m += L.ps.mass_of(i);
-      }
-    }
-    lane_p[l] = p, lane_m[l] = m;
-  });
-  Vec<D> p{};
-  mass = 0.0;
-  for (int l = 0; l < kLanes; ++l) p += lane_p[l], mass += lane_m[l];
-  return p;
+    void operator+=(const MassMomentum& o) { p += o.p, m += o.m; }
+  };
+  const MassMomentum s =
+      fluid_lane_sum<MassMomentum>(levels, [](const ParticleSet<D>& ps, std::size_t i) {
+        return MassMomentum{ps.mass_of(i) * ps.vel[i], ps.mass_of(i)};
+      });
+  mass = s.m;
+  return s.p;
 }
 
 // Fluid mass sum_i m_i over all levels (fluid_momentum's mass without its momentum).
 template <int D>
 double fluid_mass(const std::vector<Level<D>>& levels) {
-  double lane[kLanes] = {};
-  exec::for_each(kLanes, [&](std::int64_t l) {
-    double m = 0.0;
-    for (const Level<D>& L : levels) {
-      const std::size_t n = L.ps.size();
-      for (std::size_t i = static_cast<std::size_t>(l); i < n; i += kLanes)
-        m += L.ps.kind[i] == Kind::fluid ? L.ps.mass_of(i) : 0.0;
-    }
-    lane[l] = m;
-  });
-  double mass = 0.0;
-  for (double m : lane) mass += m;
-  return mass;
+  return fluid_lane_sum<double>(
+      levels, [](const ParticleSet<D>& ps, std::size_t i) { return ps.mass_of(i); });
 }
 
 // The mass of buffer particle i as its level's sums see it: m_i omega_i (LevelColumns::weight,
