@@ -38,9 +38,11 @@ struct DonorSums {
   }
 };
 
+}  // namespace
+
 template <int D>
-InterpolatedState<D> interpolate_at(const Vec<D>& x, const DonorState<D>& dn, double cond_limit,
-                                    double shepard_fill) {
+InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>& dn,
+                                            double cond_limit, double shepard_fill) {
   InterpolatedState<D> out;
   std::int64_t c = 0;
   const ParticleSet<D>& donors = dn.ps;
@@ -82,8 +84,6 @@ InterpolatedState<D> interpolate_at(const Vec<D>& x, const DonorState<D>& dn, do
   return out;
 }
 
-}  // namespace
-
 // Donor j at the fraction a of its last step: the states at the step's start (pos0, vel0, rho0)
 // and end, linearly interpolated; a = 1 is the current state itself.
 template <int D>
@@ -104,17 +104,11 @@ DonorState<D>::DonorState(const ParticleSet<D>& p, const CellGrid<D>& g, const W
 }
 
 template <int D>
-InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>& donor,
-                                            double cond_limit, double shepard_fill) {
-  return interpolate_at(x, donor, cond_limit, shepard_fill);
-}
-
-template <int D>
 InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D>& donors,
                                             const CellGrid<D>& grid, const WendlandC2<D>& kernel,
                                             double cond_limit, double a, double shepard_fill) {
   const DonorState<D> donor(donors, grid, kernel, a);
-  return interpolate_at(x, donor, cond_limit, shepard_fill);
+  return interpolate_from_donor(x, donor, cond_limit, shepard_fill);
 }
 
 template <int D, class T>
@@ -142,7 +136,7 @@ void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet
   out.resize(points.size());
   const DonorState<D> donor(donors, grid, kernel, 1.0);
   exec::for_each(static_cast<std::int64_t>(points.size()), [&](std::int64_t i) {
-    out[i] = interpolate_at(points[i], donor, cond_limit, 0.0);
+    out[i] = interpolate_from_donor(points[i], donor, cond_limit, 0.0);
   });
 }
 
