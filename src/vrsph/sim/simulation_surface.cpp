@@ -102,11 +102,10 @@ void Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corr
   const bool shifting = L.prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return;
   const double t0 = now_seconds();
-  if (capillary)
-    surface_pass_sums(L);
-  else
+  if (!capillary) {
     surface_pass_shifting_sums(L);
-  if (capillary) {
+  } else {
+    surface_pass_sums(L);
     coupling_.after_surface_sums(levels_, k);
     surface_pass_normals(L);
     coupling_.after_normals(levels_, k);
