@@ -44,6 +44,36 @@ struct PairSumsT {
 };
 using PairSums = PairSumsT<double>;
 
+// Slot K of a body's terms, for bodies that place a group of terms at an offset.
+template <int K, class T>
+[[gnu::always_inline]] inline T& slot(PairSumsT<T>& s) {
+  static_assert(K >= 0 && K < 12, "12 slots");
+  if constexpr (K == 0)
+    return s.s0;
+  else if constexpr (K == 1)
+    return s.s1;
+  else if constexpr (K == 2)
+    return s.s2;
+  else if constexpr (K == 3)
+    return s.s3;
+  else if constexpr (K == 4)
+    return s.s4;
+  else if constexpr (K == 5)
+    return s.s5;
+  else if constexpr (K == 6)
+    return s.s6;
+  else if constexpr (K == 7)
+    return s.s7;
+  else if constexpr (K == 8)
+    return s.s8;
+  else if constexpr (K == 9)
+    return s.s9;
+  else if constexpr (K == 10)
+    return s.s10;
+  else
+    return s.s11;
+}
+
 // Candidate j's columns, read by the sweep and handed to the body as values.
 template <int K, class T = double>
 struct Neighbour {

@@ -190,10 +190,14 @@ ForceStats Simulation<D>::evaluate_level(std::size_t k, double t_eval, bool corr
                                          double dt) {
   Level<D>& L = levels_[k];
   pack(k);
-  surface_fields_level(k, t_eval, corrector_stage);
-  const double t0 = now_seconds();
+  const bool refresh = surface_fields_level(k, t_eval, corrector_stage);
+  double t0 = now_seconds();
   const bool st = L.prm.sigma > 0.0;
-  const ForceStats s = level_forces(L, st, corrector_stage && coupling_.wants_buffer_reaction());
+  ForceStats s =
+      level_forces(L, st && !refresh, corrector_stage && coupling_.wants_buffer_reaction());
+  times_.forces += now_seconds() - t0;
+  if (refresh) refresh_level_after_forces(k, t_eval, s);
+  t0 = now_seconds();
   if (corrector_stage && coupling_.corrects_net_force(st))
     impulse_ += dt * coupling_.net_force(levels_, k, st);
   times_.forces += now_seconds() - t0;

@@ -197,15 +197,22 @@ DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
 }
 
 // One force evaluation of all levels at t_eval: the surface passes, then the pair forces of each
-// level with the surface-tension acceleration added, then the coupling's net-force corrections.
+// level with the surface-tension acceleration added (at a capillary refresh: passes 2 and 3 after
+// the force pass, which summed pass 1), then the coupling's net-force corrections.
 template <int D>
 ForceStats Simulation<D>::evaluate_forces(double t_eval, bool corrector_stage) {
   for (std::size_t k = 0; k < levels_.size(); ++k) pack(k);  // once, for every pass below
-  surface_fields_all(t_eval, corrector_stage);
-  const double t0 = now_seconds();
+  const bool refresh = surface_fields_all(t_eval, corrector_stage);
+  double t0 = now_seconds();
   const bool st = levels_[0].prm.sigma > 0.0;
+  level_stats_.resize(levels_.size());
+  for (std::size_t k = 0; k < levels_.size(); ++k)
+    level_stats_[k] = level_forces(levels_[k], st && !refresh, coupling_.wants_buffer_reaction());
+  times_.forces += now_seconds() - t0;
+  if (refresh) refresh_after_forces(t_eval, level_stats_);
+  t0 = now_seconds();
   ForceStats s;
-  for (Level<D>& L : levels_) s.merge(level_forces(L, st, coupling_.wants_buffer_reaction()));
+  for (const ForceStats& ls : level_stats_) s.merge(ls);
   coupling_.after_forces(levels_, st);
   times_.forces += now_seconds() - t0;
   return s;

@@ -163,8 +163,9 @@ class Simulation {
   void check_state(const Level<D>& L) const;
   void check_dt() const;
   ForceStats evaluate_forces(double t_eval, bool corrector_stage);
-  void surface_fields_all(double t_eval, bool corrector_stage);
-  void surface_passes(bool capillary, bool full);
+  bool surface_fields_all(double t_eval, bool corrector_stage);
+  void refresh_after_forces(double t_eval, std::vector<ForceStats>& per_level);
+  void capillary_passes();
   void start_refresh_clocks();
   // Local time stepping (sim/local_stepping.cpp).
   void start_local_stepping();
@@ -173,7 +174,8 @@ class Simulation {
   void cycle_child(std::size_t c, double t0, double t1);
   void step_one_level(std::size_t k, double t0, double dt);
   ForceStats evaluate_level(std::size_t k, double t_eval, bool corrector_stage, double dt);
-  void surface_fields_level(std::size_t k, double t_eval, bool corrector_stage);
+  bool surface_fields_level(std::size_t k, double t_eval, bool corrector_stage);
+  void refresh_level_after_forces(std::size_t k, double t_eval, ForceStats& s);
   void couple_level(std::size_t k, double dt, double t);
   std::vector<double> donor_fractions(double t) const;
   void check_level_dt(std::size_t k) const;
@@ -200,6 +202,7 @@ class Simulation {
   PassTimes times_;
   std::vector<RefreshClock> refresh_;
   std::vector<SurfaceFields<D>> output_sf_;  // held fields only: what outputs read
+  std::vector<ForceStats> level_stats_;      // one evaluation's force statistics per level
   // Local time stepping: the level tree, each level's last step [t0, t1], its allowed dt and
   // step count, and the net-force impulse summed since the levels last met.
   bool local_ = false;

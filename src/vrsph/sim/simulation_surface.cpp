@@ -42,78 +42,98 @@ void Simulation<D>::start_refresh_clocks() {
   if (!local_) refresh_[0] = RefreshClock(st.refresh_interval * dt_min);
 }
 
-// The surface passes of every level, each pass on all levels before the next, so that the
-// coupling can give buffer particles lambda (after pass 1) and the normal (after pass 2) from the
-// other level before the next pass uses them. Passes 2 and 3 only when `capillary`; without them
-// pass 1 serves shifting alone, and the force pass sums what the fluid particles need of it
-// (surface_pass_shifting_sums), unless `full` (outputs: every field).
+// Passes 2 and 3 of every level, each on all levels before the next, so that the coupling can
+// give buffer particles lambda (after pass 1) and the normal (after pass 2) from the other level
+// before the next pass uses them.
 template <int D>
-void Simulation<D>::surface_passes(bool capillary, bool full) {
-  for (Level<D>& L : levels_) {
-    if (capillary || full)
-      surface_pass_sums(L);
-    else
-      surface_pass_shifting_sums(L);
-  }
-  if (!capillary) return;
+void Simulation<D>::capillary_passes() {
   coupling_.after_surface_sums(levels_);
   for (Level<D>& L : levels_) surface_pass_normals(L);
   coupling_.after_normals(levels_);
   for (Level<D>& L : levels_) surface_pass_curvature(L);
 }
 
-// The surface fields a force evaluation at t_eval needs. The capillary acceleration: at every
-// evaluation, or when the refresh clock says so (extrapolated from the last two refreshes in
-// between, SurfaceFields::extrapolate). Pass 1 alone: at the corrector's stage, for shifting's
-// grad C and div r (over buffer particles only, the force pass summing the fluid's); the first
-// stage's pass 1 would feed nothing but passes 2 and 3.
+// The surface fields a force evaluation at t_eval needs, before its force pass. The capillary
+// acceleration: at every evaluation, or when the refresh clock says so (extrapolated from the last
+// two refreshes in between, SurfaceFields::extrapolate). At a refresh the force pass sums pass 1
+// for the fluid particles (surface_pass_sums_in_forces: one sweep for both), and passes 2 and 3
+// follow it (refresh_after_forces). Without a refresh, pass 1 alone at the corrector's stage, for
+// shifting's grad C and div r (over buffer particles only, the force pass summing the fluid's);
+// the first stage's pass 1 would feed nothing but passes 2 and 3. Returns whether this
+// evaluation refreshes.
 template <int D>
-void Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
-  if (!has_surface_fields()) return;
+bool Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
+  if (!has_surface_fields()) return false;
   RefreshClock& clock = refresh_[0];  // one clock for all levels, as for dt
   const bool sigma = levels_[0].prm.sigma > 0.0;
   const bool capillary = sigma && clock.due(t_eval, corrector_stage);
   if (sigma && !capillary)
     for (Level<D>& L : levels_) L.sf.extrapolate(t_eval - clock.last());
   const bool shifting = levels_[0].prm.shifting.on();
-  if (!capillary && !(shifting && corrector_stage)) return;
+  if (!capillary && !(shifting && corrector_stage)) return false;
   const double t0 = now_seconds();
-  surface_passes(capillary, false);
-  if (capillary) {
-    if (!clock.every_step())
-      for (Level<D>& L : levels_) L.sf.take_refresh(t_eval - clock.last());
-    clock.mark(t_eval);
-    ++times_.capillary_passes;
+  for (Level<D>& L : levels_) {
+    if (capillary)
+      surface_pass_sums_in_forces(L);
+    else
+      surface_pass_shifting_sums(L);
   }
+  times_.surface += now_seconds() - t0;
+  return capillary;
+}
+
+// After the force pass of a refreshing evaluation (surface_fields_all returned true): passes 2
+// and 3, the refresh clock, and the capillary acceleration added to each level's forces (whose
+// statistics `per_level` it updates).
+template <int D>
+void Simulation<D>::refresh_after_forces(double t_eval, std::vector<ForceStats>& per_level) {
+  const double t0 = now_seconds();
+  RefreshClock& clock = refresh_[0];
+  capillary_passes();
+  if (!clock.every_step())
+    for (Level<D>& L : levels_) L.sf.take_refresh(t_eval - clock.last());
+  clock.mark(t_eval);
+  ++times_.capillary_passes;
+  for (std::size_t k = 0; k < levels_.size(); ++k) add_capillary(levels_[k], per_level[k]);
   times_.surface += now_seconds() - t0;
 }
 
-// The surface fields of level k alone at t_eval (local time stepping): as surface_fields_all,
-// on the level's own clock; its buffers take lambda and the normal from the other levels' held
-// fields.
+// The surface fields of level k alone at t_eval (local time stepping), before its force pass: as
+// surface_fields_all, on the level's own clock; its buffers take lambda and the normal from the
+// other levels' held fields.
 template <int D>
-void Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corrector_stage) {
-  if (!has_surface_fields()) return;
+bool Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corrector_stage) {
+  if (!has_surface_fields()) return false;
   Level<D>& L = levels_[k];
   RefreshClock& clock = refresh_[k];
   const bool sigma = L.prm.sigma > 0.0;
   const bool capillary = sigma && clock.due(t_eval, corrector_stage);
   if (sigma && !capillary) L.sf.extrapolate(t_eval - clock.last());
   const bool shifting = L.prm.shifting.on();
-  if (!capillary && !(shifting && corrector_stage)) return;
+  if (!capillary && !(shifting && corrector_stage)) return false;
   const double t0 = now_seconds();
-  if (!capillary) {
+  if (capillary)
+    surface_pass_sums_in_forces(L);
+  else
     surface_pass_shifting_sums(L);
-  } else {
-    surface_pass_sums(L);
-    coupling_.after_surface_sums(levels_, k);
-    surface_pass_normals(L);
-    coupling_.after_normals(levels_, k);
-    surface_pass_curvature(L);
-    if (!clock.every_step()) L.sf.take_refresh(t_eval - clock.last());
-    clock.mark(t_eval);
-    ++times_.capillary_passes;
-  }
+  times_.surface += now_seconds() - t0;
+  return capillary;
+}
+
+// refresh_after_forces for level k alone.
+template <int D>
+void Simulation<D>::refresh_level_after_forces(std::size_t k, double t_eval, ForceStats& s) {
+  const double t0 = now_seconds();
+  Level<D>& L = levels_[k];
+  RefreshClock& clock = refresh_[k];
+  coupling_.after_surface_sums(levels_, k);
+  surface_pass_normals(L);
+  coupling_.after_normals(levels_, k);
+  surface_pass_curvature(L);
+  if (!clock.every_step()) L.sf.take_refresh(t_eval - clock.last());
+  clock.mark(t_eval);
+  ++times_.capillary_passes;
+  add_capillary(L, s);
   times_.surface += now_seconds() - t0;
 }
 
@@ -128,7 +148,8 @@ void Simulation<D>::update_surface_fields() {
     for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
   }
   for (std::size_t k = 0; k < levels_.size(); ++k) pack(k);
-  surface_passes(has_surface_fields() && levels_[0].prm.sigma > 0.0, true);
+  for (Level<D>& L : levels_) surface_pass_sums(L);
+  if (has_surface_fields() && levels_[0].prm.sigma > 0.0) capillary_passes();
   if (hold) {
     for (std::size_t k = 0; k < levels_.size(); ++k) std::swap(levels_[k].sf, output_sf_[k]);
   }
@@ -137,12 +158,16 @@ void Simulation<D>::update_surface_fields() {
 
 template void Simulation<2>::start_refresh_clocks();
 template void Simulation<3>::start_refresh_clocks();
-template void Simulation<2>::surface_passes(bool, bool);
-template void Simulation<3>::surface_passes(bool, bool);
-template void Simulation<2>::surface_fields_all(double, bool);
-template void Simulation<3>::surface_fields_all(double, bool);
-template void Simulation<2>::surface_fields_level(std::size_t, double, bool);
-template void Simulation<3>::surface_fields_level(std::size_t, double, bool);
+template void Simulation<2>::capillary_passes();
+template void Simulation<3>::capillary_passes();
+template bool Simulation<2>::surface_fields_all(double, bool);
+template bool Simulation<3>::surface_fields_all(double, bool);
+template void Simulation<2>::refresh_after_forces(double, std::vector<ForceStats>&);
+template void Simulation<3>::refresh_after_forces(double, std::vector<ForceStats>&);
+template bool Simulation<2>::surface_fields_level(std::size_t, double, bool);
+template bool Simulation<3>::surface_fields_level(std::size_t, double, bool);
+template void Simulation<2>::refresh_level_after_forces(std::size_t, double, ForceStats&);
+template void Simulation<3>::refresh_level_after_forces(std::size_t, double, ForceStats&);
 template void Simulation<2>::update_surface_fields();
 template void Simulation<3>::update_surface_fields();
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "vrsph/exec/parallel.hpp"
@@ -37,37 +38,19 @@ struct Self {
 };
 
 // Sums of one particle over its spans: drho/dt (s0), pairs (s1), acceleration (s2..s1+D; a 2D
-// sweep sums no zero z component), with kShift shifting's grad C (s2+D..s1+2D) and div r
-// (s2+2D), and the viscous time-step measure (max).
+// sweep sums no zero z component), then the first kSurf terms of surface pass 1
+// (solver/pass1_terms.hpp) from s2+D, and the viscous time-step measure (max).
 struct ForceSums {
   double s[12] = {};
   double max_visc_dt = -1e300;
 };
 
-// Shifting's pair terms (physics/shifting.hpp) in the slots after the acceleration: grad C, div r.
-template <int D, class T>
-[[gnu::always_inline]] inline void add_shifting_pair(const PairGeometryT<T>& g, T vol_j,
-                                                     PairSumsT<T>& s) {
-  const T vf = vol_j * g.f;
-  if constexpr (D == 2) {
-    s.s4 = colour_gradient_pair(vf, g.rx);
-    s.s5 = colour_gradient_pair(vf, g.ry);
-    s.s6 = position_divergence_pair(vf, g.r2);
-  } else {
-    s.s5 = colour_gradient_pair(vf, g.rx);
-    s.s6 = colour_gradient_pair(vf, g.ry);
-    s.s7 = colour_gradient_pair(vf, g.rz);
-    s.s8 = position_divergence_pair(vf, g.r2);
-  }
-}
-
 // The fluid particle i against one block: pressure, viscosity, continuity and (kWall: not with
-// wall neighbours) density diffusion; kShift: also shifting's grad C and div r, the terms of
-// surface pass 1 (solver/surface_pass.cpp) on the same geometry. Everything the body reads is a
-// value (exec/sweep.hpp).
+// wall neighbours) density diffusion; also the first kSurf terms of surface pass 1 on the same
+// geometry (solver/pass1_terms.hpp). Everything the body reads is a value (exec/sweep.hpp).
 // T: the arithmetic of the pair terms (core/precision.hpp). Densities arrive as deviations
 // rho - rho0 (LevelColumns): rho = rho0 + deviation, exact in double.
-template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, bool kShift, class T>
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, int kSurf, class T>
 inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
   using C = ForceCol<D>;
   const T rho0 = static_cast<T>(prm.eos.rho0);
@@ -117,21 +100,21 @@ inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
     PairSumsT<T> s;  // drho/dt, pair count, acceleration, viscous dt measure
     s.s0 = dr, s.s1 = g.in, s.s2 = ax, s.s3 = ay;
     if constexpr (D == 3) s.s4 = az;
-    if constexpr (kShift) add_shifting_pair<D>(g, vol_j, s);
+    if constexpr (kSurf > 0) add_pass1_terms<D, kSurf, 2 + D>(g, vol_j, s);
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };
   return pair;
 }
-template <int D, bool kShift>
-inline constexpr int kForceSums = 2 + D + (kShift ? D + 1 : 0);
+template <int D, int kSurf>
+inline constexpr int kForceSums = 2 + D + kSurf;
 // The fluid particle i against the spans of its stencil in the state columns st.
-template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, bool kShift, class T>
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, int kSurf, class T>
 inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const StateRuns<D, T>& st,
                         const Span* spans, int count, ForceSums& out) {
   constexpr int K = kStateCols<D, T>;
-  sweep_spans<D, K, kForceSums<D, kShift>, true, StateRuns<D, T>::kLo>(
-      prm.kernel, me.x, st.base, spans, count, fluid_pair<D, VM, DM, kWall, kShift>(prm, me), out.s,
+  sweep_spans<D, K, kForceSums<D, kSurf>, true, StateRuns<D, T>::kLo>(
+      prm.kernel, me.x, st.base, spans, count, fluid_pair<D, VM, DM, kWall, kSurf>(prm, me), out.s,
       out.max_visc_dt, me.x_lo);
 }
 
@@ -193,13 +176,25 @@ Vec<D> acceleration(const ForceSums& s) {
   return a;
 }
 
-template <int D, ViscosityModel VM, DiffusionModel DM, class T, bool kShift>
-ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                      const LevelColumns<D>& cols, const Vec<D>* extra_acc, bool buffer_reaction,
-                      const ShiftingSums<D>& shift) {
+// The arguments of one force pass (compute_forces_packed).
+template <int D>
+struct ForceCall {
+  const SolverParams<D>& prm;
+  ParticleSet<D>& ps;
+  const CellGrid<D>& grid;
+  const LevelColumns<D>& cols;
+  const Vec<D>* extra_acc;
+  bool buffer_reaction;
+  const Pass1Out<D>* pass1;
+};
+
+template <int D, ViscosityModel VM, DiffusionModel DM, class T, int kSurf>
+ForceStats force_pass(const ForceCall<D>& call) {
+  const auto& [prm, ps, grid, cols, extra_acc, buffer_reaction, pass1] = call;
   if (grid.reach() > 4) throw std::invalid_argument("force pass: more than 4 cells per support");
   const auto& cells = grid.particle_cells();
   const StateRuns<D, T>& st = cols.template state_of<T>();
+  const double w0 = prm.kernel.w(0.0);
   auto body = [&](std::int64_t ii, ForceScratch<D>& sc, ForceAcc& acc) {
     const auto i = static_cast<std::uint32_t>(ii);
     const Self<T> me(st, i);
@@ -211,7 +206,7 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       // (buffer_reaction false) a buffer particle needs no neighbour at all.
       if (buffer_reaction) {
         sc.spans_of(grid, cells[i]);
-        fluid_sweep<D, VM, DM, false, false>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
+        fluid_sweep<D, VM, DM, false, 0>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
       }
       ps.acc[i] = acceleration<D>(s);
       ps.drho[i] = 0.0;
@@ -224,12 +219,9 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
       else
         wall_sweep<D, ForceCol<D>::vol>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
     } else {
-      fluid_sweep<D, VM, DM, false, kShift>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
-      fluid_sweep<D, VM, DM, true, kShift>(prm, me, st, sc.wall.span, sc.wall.count, s);
-      if constexpr (kShift) {
-        for (int k = 0; k < D; ++k) shift.grad_c[i][k] = s.s[2 + D + k];
-        shift.div_r[i] = s.s[2 + 2 * D];
-      }
+      fluid_sweep<D, VM, DM, false, kSurf>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
+      fluid_sweep<D, VM, DM, true, kSurf>(prm, me, st, sc.wall.span, sc.wall.count, s);
+      if constexpr (kSurf > 0) pass1->store(i, s.s + 2 + D, shepard_self(ps, cols, i, w0));
     }
     Vec<D> a = acceleration<D>(s);
     if (extra_acc != nullptr && ps.kind[i] != Kind::wall) a += extra_acc[i];
@@ -244,32 +236,37 @@ ForceStats force_pass(const SolverParams<D>& prm, ParticleSet<D>& ps, const Cell
   return {total.max_visc_dt, std::sqrt(total.max_acc2), total.pairs};
 }
 
-template <int D, ViscosityModel VM, class T, bool kShift>
-ForceStats dispatch_diffusion(const SolverParams<D>& prm, ParticleSet<D>& ps,
-                              const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                              const Vec<D>* extra, bool br, const ShiftingSums<D>& sh) {
-  switch (prm.density_diffusion.model) {
+// The models and the pass-1 terms as template parameters, chosen once per call.
+template <int D, ViscosityModel VM, class T, int kSurf>
+ForceStats dispatch_diffusion(const ForceCall<D>& call) {
+  switch (call.prm.density_diffusion.model) {
     case DiffusionModel::none:
-      return force_pass<D, VM, DiffusionModel::none, T, kShift>(prm, ps, grid, cols, extra, br, sh);
+      return force_pass<D, VM, DiffusionModel::none, T, kSurf>(call);
     case DiffusionModel::molteni:
-      return force_pass<D, VM, DiffusionModel::molteni, T, kShift>(prm, ps, grid, cols, extra, br,
-                                                                   sh);
+      return force_pass<D, VM, DiffusionModel::molteni, T, kSurf>(call);
     case DiffusionModel::fourtakas:
-      return force_pass<D, VM, DiffusionModel::fourtakas, T, kShift>(prm, ps, grid, cols, extra, br,
-                                                                     sh);
+      return force_pass<D, VM, DiffusionModel::fourtakas, T, kSurf>(call);
   }
   return {};
 }
 
-template <int D, class T, bool kShift>
-ForceStats dispatch_viscosity(const SolverParams<D>& prm, ParticleSet<D>& ps,
-                              const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                              const Vec<D>* extra, bool br, const ShiftingSums<D>& sh) {
-  if (prm.viscosity.model == ViscosityModel::laminar)
-    return dispatch_diffusion<D, ViscosityModel::laminar, T, kShift>(prm, ps, grid, cols, extra, br,
-                                                                     sh);
-  return dispatch_diffusion<D, ViscosityModel::artificial, T, kShift>(prm, ps, grid, cols, extra,
-                                                                      br, sh);
+template <int D, class T, int kSurf>
+ForceStats dispatch_viscosity(const ForceCall<D>& call) {
+  if (call.prm.viscosity.model == ViscosityModel::laminar)
+    return dispatch_diffusion<D, ViscosityModel::laminar, T, kSurf>(call);
+  return dispatch_diffusion<D, ViscosityModel::artificial, T, kSurf>(call);
+}
+
+template <int D, class T>
+ForceStats dispatch_pass1(const ForceCall<D>& call) {
+  const int terms = call.pass1 == nullptr ? 0 : call.pass1->terms;
+  if (terms == 0) return dispatch_viscosity<D, T, 0>(call);
+  if (terms == kShiftingTerms<D>) return dispatch_viscosity<D, T, kShiftingTerms<D>>(call);
+  if constexpr (kForcePassSumsPass1<D>) {
+    if (terms == kPass1Terms<D, true>) return dispatch_viscosity<D, T, kPass1Terms<D, true>>(call);
+  }
+  throw std::invalid_argument("force pass: cannot sum " + std::to_string(terms) +
+                              " terms of surface pass 1");
 }
 
 }  // namespace
@@ -278,17 +275,12 @@ template <int D>
 ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const CellGrid<D>& grid, const LevelColumns<D>& cols,
                                  const Vec<D>* extra_acc, bool buffer_reaction,
-                                 const ShiftingSums<D>* shift) {
+                                 const Pass1Out<D>* pass1) {
   ps.acc.resize(ps.size());
   ps.drho.resize(ps.size());
-  return with_pair_type(prm.precision, [&](auto t) {
-    using T = decltype(t);
-    if (shift != nullptr)
-      return dispatch_viscosity<D, T, true>(prm, ps, grid, cols, extra_acc, buffer_reaction,
-                                            *shift);
-    return dispatch_viscosity<D, T, false>(prm, ps, grid, cols, extra_acc, buffer_reaction,
-                                           ShiftingSums<D>{});
-  });
+  const ForceCall<D> call{prm, ps, grid, cols, extra_acc, buffer_reaction, pass1};
+  return with_pair_type(prm.precision,
+                        [&](auto t) { return dispatch_pass1<D, decltype(t)>(call); });
 }
 
 template <int D>
@@ -306,10 +298,10 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
 
 template ForceStats compute_forces_packed<2>(const SolverParams<2>&, ParticleSet<2>&,
                                              const CellGrid<2>&, const LevelColumns<2>&,
-                                             const Vec<2>*, bool, const ShiftingSums<2>*);
+                                             const Vec<2>*, bool, const Pass1Out<2>*);
 template ForceStats compute_forces_packed<3>(const SolverParams<3>&, ParticleSet<3>&,
                                              const CellGrid<3>&, const LevelColumns<3>&,
-                                             const Vec<3>*, bool, const ShiftingSums<3>*);
+                                             const Vec<3>*, bool, const Pass1Out<3>*);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&,

@@ -13,6 +13,7 @@
 #include "vrsph/particles/particles.hpp"
 #include "vrsph/solver/columns.hpp"
 #include "vrsph/solver/params.hpp"
+#include "vrsph/solver/pass1_terms.hpp"
 
 namespace vrsph {
 
@@ -34,28 +35,27 @@ struct ForceStats {
 template <int D>
 using ForceWorkspace = LevelColumns<D>;
 
-// Where a force pass also writes particle shifting's sums of its fluid particles
-// (physics/shifting.hpp): grad C_i = sum_j V_j grad_i W_ij and div r_i = -sum_j V_j r_ij . grad_i
-// W_ij over fluid and wall neighbours, as surface pass 1 sums them (solver/surface_pass.hpp), in
-// the same order over the same candidates. One sweep then serves both on the evaluations where
-// pass 1 runs for shifting alone (surface_sums_for_shifting).
+// A force pass can also sum surface pass 1's terms for its fluid particles (solver/pass1_terms.hpp)
+// over the same candidates at the same positions, so that one sweep serves both: shifting's grad C
+// and div r on the evaluations where pass 1 runs for shifting alone (surface_sums_for_shifting),
+// or the whole pass 1 at a capillary refresh (surface_sums_in_forces). The whole pass fits only
+// where the force pass's 2 + D sums and pass 1's (with G) fit a sweep's 12: 2D (4 + 8), not 3D
+// (5 + 12).
 template <int D>
-struct ShiftingSums {
-  Vec<D>* grad_c = nullptr;
-  double* div_r = nullptr;
-};
+inline constexpr bool kForcePassSumsPass1 = 2 + D + kPass1Terms<D, true> <= 12;
 
 // ps.acc and ps.drho for every particle (acc = 0 on walls) from the columns `cols`, packed from
 // ps (LevelColumns::pack). extra_acc (null: none) is a per-particle acceleration added to the
 // fluid's, e.g. surface tension; it counts in ForceStats::max_acc.
 // buffer_reaction: buffer particles get the acceleration their level's fluid and buffer
 // neighbours exert on them (vres/momentum.hpp measures the coupling's net force from it);
-// otherwise their acc is 0. shift (null: none): the fluid particles' shifting sums go there too.
+// otherwise their acc is 0. pass1 (null: none): the fluid particles' pass-1 fields go there too,
+// pass1->terms of them (shifting's, or the whole pass with G where kForcePassSumsPass1).
 template <int D>
 ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const CellGrid<D>& grid, const LevelColumns<D>& cols,
                                  const Vec<D>* extra_acc = nullptr, bool buffer_reaction = false,
-                                 const ShiftingSums<D>* shift = nullptr);
+                                 const Pass1Out<D>* pass1 = nullptr);
 
 // The same, packing ps into ws first.
 template <int D>

@@ -34,13 +34,36 @@ void surface_pass_shifting_sums(Level<D>& L) {
 }
 
 template <int D>
+bool surface_pass_sums_in_forces(Level<D>& L) {
+  return surface_sums_in_forces(L.prm, L.ps, L.grid, L.cols, L.sf);
+}
+
+template <int D>
 ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction) {
-  const ShiftingSums<D> shift{L.sf.grad_c.data(), L.sf.div_r.data()};
-  const bool with_shift = L.sf.shifting_in_forces;
-  L.sf.shifting_in_forces = false;
+  const Pass1InForces mode = L.sf.in_forces;
+  L.sf.in_forces = Pass1InForces::none;
+  const Pass1Out<D> pass1 = L.sf.pass1_out(mode == Pass1InForces::full);
   return compute_forces_packed(L.prm, L.ps, L.grid, L.cols,
                                capillary ? L.sf.acc_st.data() : nullptr, buffer_reaction,
-                               with_shift ? &shift : nullptr);
+                               mode == Pass1InForces::none ? nullptr : &pass1);
+}
+
+template <int D>
+void add_capillary(Level<D>& L, ForceStats& s) {
+  ParticleSet<D>& ps = L.ps;
+  const std::vector<Vec<D>>& a_st = L.sf.acc_st;
+  struct MaxAcc2 {
+    double v = 0.0;
+    void merge(const MaxAcc2& o) { v = std::max(v, o.v); }
+  };
+  struct None {};
+  const MaxAcc2 m = exec::for_each_gather<None, MaxAcc2>(
+      static_cast<std::int64_t>(ps.size()), 1024, [&](std::int64_t i, None&, MaxAcc2& acc) {
+        if (ps.kind[i] != Kind::fluid) return;
+        ps.acc[i] += a_st[i];
+        acc.v = std::max(acc.v, norm2(ps.acc[i]));
+      });
+  s.max_acc = std::sqrt(m.v);
 }
 
 // Predictor (dt/2): x+ = x + dt/2 v, v+ = v + dt/2 (a + g), rho+ = rho + dt/2 drho.
@@ -174,12 +197,16 @@ template void surface_pass_sums<2>(Level<2>&);
 template void surface_pass_sums<3>(Level<3>&);
 template void surface_pass_shifting_sums<2>(Level<2>&);
 template void surface_pass_shifting_sums<3>(Level<3>&);
+template bool surface_pass_sums_in_forces<2>(Level<2>&);
+template bool surface_pass_sums_in_forces<3>(Level<3>&);
 template void surface_pass_normals<2>(Level<2>&);
 template void surface_pass_normals<3>(Level<3>&);
 template void surface_pass_curvature<2>(Level<2>&);
 template void surface_pass_curvature<3>(Level<3>&);
 template ForceStats level_forces<2>(Level<2>&, bool, bool);
 template ForceStats level_forces<3>(Level<3>&, bool, bool);
+template void add_capillary<2>(Level<2>&, ForceStats&);
+template void add_capillary<3>(Level<3>&, ForceStats&);
 template void predictor<2>(Level<2>&, double);
 template void predictor<3>(Level<3>&, double);
 template void corrector<2>(Level<2>&, double);

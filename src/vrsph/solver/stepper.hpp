@@ -25,16 +25,25 @@ void surface_pass_sums(Level<D>& L);
 // fluid particles' grad C and div r.
 template <int D>
 void surface_pass_shifting_sums(Level<D>& L);
+// Pass 1 with the fluid rows left to the level's next level_forces, which sums all of it
+// (surface_sums_in_forces); false where it cannot, having run the whole pass 1.
+template <int D>
+bool surface_pass_sums_in_forces(Level<D>& L);
 template <int D>
 void surface_pass_normals(Level<D>& L);
 template <int D>
 void surface_pass_curvature(Level<D>& L);
 
 // Pair forces on the packed columns, with the capillary acceleration added when `capillary`;
-// buffer_reaction as in compute_forces_packed; with the fluid particles' shifting sums after
-// surface_pass_shifting_sums.
+// buffer_reaction as in compute_forces_packed; with the fluid particles' pass-1 sums after
+// surface_pass_shifting_sums or surface_pass_sums_in_forces.
 template <int D>
 ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction);
+// The capillary acceleration of passes 2 and 3 run after the force pass (a refresh whose pass 1
+// the force pass summed) added to the fluid's, and s.max_acc taken anew over the sums: what
+// level_forces with `capillary` gives, in two steps.
+template <int D>
+void add_capillary(Level<D>& L, ForceStats& s);
 
 // Predictor (dt/2) and corrector (dt) of the symplectic scheme.
 template <int D>

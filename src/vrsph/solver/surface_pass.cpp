@@ -8,6 +8,7 @@
 #include "vrsph/exec/sweep.hpp"
 #include "vrsph/physics/shifting.hpp"
 #include "vrsph/physics/surface_tension.hpp"
+#include "vrsph/solver/forces.hpp"
 #include "vrsph/solver/normal_bound.hpp"
 #include "vrsph/solver/surface_block.hpp"
 #include "vrsph/solver/surface_pass1.hpp"
@@ -32,19 +33,10 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   const bool grad_w = prm.sigma > 0.0;  // read by pass 2 only
   sf.grad_w.resize(grad_w ? ps.size() : 0);
   sf.cross_hit.assign(sf.cross.empty() ? 0 : ps.size(), 0);
-  // The fields of particle i from its pass-1 slots; w_self = W(0) of its kernel.
+  const Pass1Out<D> out = sf.pass1_out(true);
+  // The fields of particle i from its pass-1 sums; w_self = W(0) of its kernel.
   auto finish = [&](std::size_t i, const double(&s)[12], double w_self) {
-    Mat<D> m;
-    Vec<D> grad_c;
-    pass1::assemble_pass1<D>(s, m, grad_c);
-    const double lambda = min_eigenvalue(m);
-    sf.lambda[i] = lambda;
-    sf.l_corr[i] = correction_from_m(m, lambda);
-    sf.grad_c[i] = grad_c;
-    sf.div_r[i] = s[5];
-    const double vol_i = ps.mass_of(i) / ps.rho[i] * (cols.weight.empty() ? 1.0 : cols.weight[i]);
-    sf.shepard[i] = shepard_pair(vol_i, w_self) + s[6];  // self + neighbours
-    if (grad_w) sf.grad_w[i] = s[D == 3 ? 11 : 7];
+    out.store(i, s, shepard_self(ps, cols, i, w_self));
   };
   auto body = [&](std::int64_t ii, StencilSpans<D>& sp) {
     const auto i = static_cast<std::size_t>(ii);
@@ -274,7 +266,18 @@ bool surface_sums_for_shifting(const SolverParams<D>& prm, const ParticleSet<D>&
   const bool in_forces = sf.cross.empty() && sf.h_wide.empty();
   with_pair_type(prm.precision,
                  [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, !in_forces); });
-  sf.shifting_in_forces = in_forces;
+  sf.in_forces = in_forces ? Pass1InForces::shifting : Pass1InForces::none;
+  return in_forces;
+}
+
+template <int D>
+bool surface_sums_in_forces(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                            const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                            SurfaceFields<D>& sf) {
+  const bool in_forces = kForcePassSumsPass1<D> && sf.cross.empty() && sf.h_wide.empty();
+  with_pair_type(prm.precision,
+                 [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, !in_forces); });
+  sf.in_forces = in_forces ? Pass1InForces::full : Pass1InForces::none;
   return in_forces;
 }
 
@@ -315,6 +318,12 @@ template void surface_sums<2>(const SolverParams<2>&, const ParticleSet<2>&, con
 template bool surface_sums_for_shifting<2>(const SolverParams<2>&, const ParticleSet<2>&,
                                            const CellGrid<2>&, const LevelColumns<2>&,
                                            SurfaceFields<2>&);
+template bool surface_sums_in_forces<2>(const SolverParams<2>&, const ParticleSet<2>&,
+                                        const CellGrid<2>&, const LevelColumns<2>&,
+                                        SurfaceFields<2>&);
+template bool surface_sums_in_forces<3>(const SolverParams<3>&, const ParticleSet<3>&,
+                                        const CellGrid<3>&, const LevelColumns<3>&,
+                                        SurfaceFields<3>&);
 template bool surface_sums_for_shifting<3>(const SolverParams<3>&, const ParticleSet<3>&,
                                            const CellGrid<3>&, const LevelColumns<3>&,
                                            SurfaceFields<3>&);

@@ -15,6 +15,7 @@
 #include "vrsph/solver/cross_level.hpp"
 #include "vrsph/solver/normal_bound.hpp"
 #include "vrsph/solver/params.hpp"
+#include "vrsph/solver/pass1_terms.hpp"
 
 namespace vrsph {
 
@@ -69,9 +70,17 @@ struct SurfaceFields {
   // (local time stepping: a level's buffers read the other levels' fields between their passes).
   bool held = false;
   bool held_geometry = false;
-  // Set by surface_sums_for_shifting: the next force pass sums the fluid particles' grad C and
-  // div r (and clears it).
-  bool shifting_in_forces = false;
+  // Set by surface_sums_for_shifting and surface_sums_in_forces: what of pass 1 the level's next
+  // force pass sums for the fluid particles (it clears it).
+  Pass1InForces in_forces = Pass1InForces::none;
+  // Where pass 1 writes its fields (solver/pass1_terms.hpp), for the whole pass or for shifting's
+  // sums alone; G only where it is summed (grad_w sized).
+  Pass1Out<D> pass1_out(bool whole) {
+    Pass1Out<D> o{grad_c.data(), div_r.data(),   lambda.data(),
+                  l_corr.data(), shepard.data(), grad_w.empty() ? nullptr : grad_w.data()};
+    if (whole) o.terms = kPass1Terms<D, false> + (grad_w.empty() ? 0 : 1);
+    return o;
+  }
   // Reorders the held arrays after a sort of the level (CellGrid::carry).
   template <class Grid>
   void carry(Grid& grid) {
@@ -105,15 +114,23 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
                   const LevelColumns<D>& cols, SurfaceFields<D>& sf);
 // Pass 1 for shifting alone (an evaluation without a capillary refresh): the sums of the particles
 // that are not fluid (buffer particles shift too; walls get neutral values), and sets
-// sf.shifting_in_forces: the fluid particles' grad C and div r are then summed by the level's
-// next force pass (solver/forces.hpp, ShiftingSums), which visits the same neighbours at the same
-// positions, and their lambda, L, Shepard sum and G keep the values of the last full pass 1 (read
-// only by passes 2 and 3, which run after a full pass 1). Returns whether it did so: with fields
-// summed across levels (sf.cross, sf.h_wide) it runs the full pass 1 instead.
+// sf.in_forces: the fluid particles' grad C and div r are then summed by the level's next force
+// pass (solver/forces.hpp), which visits the same neighbours at the same positions, and their
+// lambda, L, Shepard sum and G keep the values of the last full pass 1 (read only by passes 2 and
+// 3, which run after a full pass 1). Returns whether it did so: with fields summed across levels
+// (sf.cross, sf.h_wide) it runs the full pass 1 instead.
 template <int D>
 bool surface_sums_for_shifting(const SolverParams<D>& prm, const ParticleSet<D>& ps,
                                const CellGrid<D>& grid, const LevelColumns<D>& cols,
                                SurfaceFields<D>& sf);
+// Pass 1 with the fluid particles' rows left to the level's next force pass (all of pass 1 in the
+// same sweep as the pair forces, Pass1InForces::full): a capillary refresh whose passes 2 and 3
+// run after the force pass. Where the force pass cannot (fields across levels, or 3D, whose 17
+// sums exceed a sweep's 12) it runs the whole pass 1 and returns false.
+template <int D>
+bool surface_sums_in_forces(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                            const CellGrid<D>& grid, const LevelColumns<D>& cols,
+                            SurfaceFields<D>& sf);
 // The same, packing positions and volumes into sf.own.
 template <int D>
 void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellGrid<D>& grid,

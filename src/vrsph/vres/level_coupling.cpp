@@ -170,8 +170,11 @@ void LevelCoupling<D>::after_forces(std::vector<Level<D>>& levels, bool capillar
   if (!coupling && !net_st) return;
   Vec<D> f{};
   if (coupling) f += coupling_net_force(levels);
-  if (net_st) f += surface_net_force(levels);
-  const double mass = fluid_mass(levels);
+  double mass = 0.0;
+  if (net_st)
+    f += surface_net_force(levels, mass);
+  else
+    mass = fluid_mass(levels);
   if (mass > 0.0) add_to_fluid(levels, f * (-1.0 / mass), false);
 }
 

@@ -42,7 +42,7 @@ namespace vrsph {
 // a small drop's step.
 inline constexpr int kLanes = 4;
 
-// sum_i term(ps, i) over the fluid particles of all levels in the lanes above, the lanes in
+// sum_i term(L, i) over the fluid particles i of all levels L in the lanes above, the lanes in
 // parallel, each in index order into a local sum (a shared array written by two threads at every
 // particle would bounce its cache line between them), then added in lane order.
 template <class T, int D, class Term>
@@ -52,7 +52,7 @@ T fluid_lane_sum(const std::vector<Level<D>>& levels, Term&& term) {
     T sum{};
     for (const Level<D>& L : levels)
       for (std::size_t i = static_cast<std::size_t>(l); i < L.ps.size(); i += kLanes)
-        if (L.ps.kind[i] == Kind::fluid) sum += term(L.ps, i);
+        if (L.ps.kind[i] == Kind::fluid) sum += term(L, i);
     lane[l] = sum;
   });
   T total{};
@@ -60,28 +60,30 @@ T fluid_lane_sum(const std::vector<Level<D>>& levels, Term&& term) {
   return total;
 }
 
+// A vector sum of the fluid and the fluid mass, summed together (one pass for both).
+template <int D>
+struct MassAnd {
+  Vec<D> v{};
+  double m = 0.0;
+  void operator+=(const MassAnd& o) { v += o.v, m += o.m; }
+};
+
 // Fluid momentum sum_i m_i v_i over all levels (buffer and wall particles excluded); mass gets
 // sum_i m_i, the same bits as fluid_mass.
 template <int D>
 Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
-  struct MassMomentum {
-    Vec<D> p{};
-    double m = 0.0;
-    void operator+=(const MassMomentum& o) { p += o.p, m += o.m; }
-  };
-  const MassMomentum s =
-      fluid_lane_sum<MassMomentum>(levels, [](const ParticleSet<D>& ps, std::size_t i) {
-        return MassMomentum{ps.mass_of(i) * ps.vel[i], ps.mass_of(i)};
-      });
+  const MassAnd<D> s = fluid_lane_sum<MassAnd<D>>(levels, [](const Level<D>& L, std::size_t i) {
+    return MassAnd<D>{L.ps.mass_of(i) * L.ps.vel[i], L.ps.mass_of(i)};
+  });
   mass = s.m;
-  return s.p;
+  return s.v;
 }
 
 // Fluid mass sum_i m_i over all levels (fluid_momentum's mass without its momentum).
 template <int D>
 double fluid_mass(const std::vector<Level<D>>& levels) {
-  return fluid_lane_sum<double>(
-      levels, [](const ParticleSet<D>& ps, std::size_t i) { return ps.mass_of(i); });
+  return fluid_lane_sum<double>(levels,
+                                [](const Level<D>& L, std::size_t i) { return L.ps.mass_of(i); });
 }
 
 // The mass of buffer particle i as its level's sums see it: m_i omega_i (LevelColumns::weight,
@@ -104,19 +106,15 @@ Vec<D> coupling_net_force(const std::vector<Level<D>>& levels) {
 }
 
 // F_st: sum over fluid particles of m_i a_st,i (levels without surface tension give zero), in
-// lanes.
+// lanes; mass gets sum_i m_i, the same bits as fluid_mass.
 template <int D>
-Vec<D> surface_net_force(const std::vector<Level<D>>& levels) {
-  Vec<D> lane[kLanes] = {};
-  for (const Level<D>& L : levels) {
-    if (L.sf.acc_st.size() != L.ps.size()) continue;
-    for (std::size_t i = 0; i < L.ps.size(); ++i) {
-      if (L.ps.kind[i] == Kind::fluid) lane[i % kLanes] += L.ps.mass_of(i) * L.sf.acc_st[i];
-    }
-  }
-  Vec<D> f{};
-  for (const Vec<D>& v : lane) f += v;
-  return f;
+Vec<D> surface_net_force(const std::vector<Level<D>>& levels, double& mass) {
+  const MassAnd<D> s = fluid_lane_sum<MassAnd<D>>(levels, [](const Level<D>& L, std::size_t i) {
+    const bool st = L.sf.acc_st.size() == L.ps.size();
+    return MassAnd<D>{st ? L.ps.mass_of(i) * L.sf.acc_st[i] : Vec<D>{}, L.ps.mass_of(i)};
+  });
+  mass = s.m;
+  return s.v;
 }
 
 // Adds a (or, when velocity is true, dv) to every fluid particle of every level.
