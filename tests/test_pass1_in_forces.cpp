@@ -10,7 +10,8 @@
 //  - surface_sums_for_shifting leaves the fluid particles' lambda as it was, gives a buffer
 //    particle pass 1's values, and hands the fluid rows to the next level_forces (the flag);
 //  - a refresh with pass 1 in the force pass and passes 2 and 3 after it (add_capillary) gives the
-//    accelerations of passes 1-3 before the force pass, bit for bit without walls.
+//    accelerations of passes 1-3 before the force pass, bit for bit without walls; mixed precision
+//    and 3D run pass 1 apart.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -210,6 +211,33 @@ TEST(Pass1InForces, RefreshAfterTheForcePassGivesTheSameAccelerations) {
   EXPECT_GT(pulled, 30u) << "the capillary force must act for the check to bite";
   EXPECT_EQ(s1.max_acc, s0.max_acc);
   EXPECT_EQ(s1.pairs, s0.pairs);
+}
+
+// Mixed precision and 3D keep pass 1 apart (surface_sums_in_forces): the whole pass runs, the flag
+// stays clear.
+TEST(Pass1InForces, MixedPrecisionAnd3DRunPassOneApart) {
+  auto c2 = make_cloud<2>(10, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, 2);
+  Level<2> L2;
+  L2.prm = c2.prm;
+  L2.prm.sigma = 0.0728;
+  L2.prm.precision = Precision::mixed;
+  L2.ps = c2.ps;
+  L2.grid = c2.grid;
+  pack_level(L2);
+  EXPECT_FALSE(surface_pass_sums_in_forces(L2));
+  EXPECT_EQ(L2.sf.in_forces, Pass1InForces::none);
+  EXPECT_GT(L2.sf.lambda[0], 0.0) << "the whole pass 1 ran";
+
+  auto c3 = make_cloud<3>(6, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, 2);
+  Level<3> L3;
+  L3.prm = c3.prm;
+  L3.prm.sigma = 0.0728;
+  L3.ps = c3.ps;
+  L3.grid = c3.grid;
+  pack_level(L3);
+  EXPECT_FALSE(surface_pass_sums_in_forces(L3));
+  EXPECT_EQ(L3.sf.in_forces, Pass1InForces::none);
+  EXPECT_GT(L3.sf.lambda[0], 0.0) << "the whole pass 1 ran";
 }
 
 }  // namespace

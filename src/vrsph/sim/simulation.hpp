@@ -166,6 +166,8 @@ class Simulation {
   bool surface_fields_all(double t_eval, bool corrector_stage);
   void refresh_after_forces(double t_eval, std::vector<ForceStats>& per_level);
   void capillary_passes();
+  void refresh_all(double t_eval);
+  void refresh_level(std::size_t k, double t_eval);
   void start_refresh_clocks();
   // Local time stepping (sim/local_stepping.cpp).
   void start_local_stepping();

@@ -53,14 +53,26 @@ void Simulation<D>::capillary_passes() {
   for (Level<D>& L : levels_) surface_pass_curvature(L);
 }
 
+// A capillary refresh of every level after pass 1: passes 2 and 3, the held acceleration's
+// history, the clock.
+template <int D>
+void Simulation<D>::refresh_all(double t_eval) {
+  RefreshClock& clock = refresh_[0];
+  capillary_passes();
+  if (!clock.every_step())
+    for (Level<D>& L : levels_) L.sf.take_refresh(t_eval - clock.last());
+  clock.mark(t_eval);
+  ++times_.capillary_passes;
+}
+
 // The surface fields a force evaluation at t_eval needs, before its force pass. The capillary
 // acceleration: at every evaluation, or when the refresh clock says so (extrapolated from the last
 // two refreshes in between, SurfaceFields::extrapolate). At a refresh the force pass sums pass 1
-// for the fluid particles (surface_pass_sums_in_forces: one sweep for both), and passes 2 and 3
-// follow it (refresh_after_forces). Without a refresh, pass 1 alone at the corrector's stage, for
-// shifting's grad C and div r (over buffer particles only, the force pass summing the fluid's);
-// the first stage's pass 1 would feed nothing but passes 2 and 3. Returns whether this
-// evaluation refreshes.
+// for the fluid particles where it can (surface_pass_sums_in_forces: one sweep for both), and
+// passes 2 and 3 then follow it (refresh_after_forces); elsewhere they run here. Without a
+// refresh, pass 1 alone at the corrector's stage, for shifting's grad C and div r (over buffer
+// particles only, the force pass summing the fluid's); the first stage's pass 1 would feed
+// nothing but passes 2 and 3. Returns whether passes 2 and 3 wait for the force pass.
 template <int D>
 bool Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
   if (!has_surface_fields()) return false;
@@ -72,35 +84,46 @@ bool Simulation<D>::surface_fields_all(double t_eval, bool corrector_stage) {
   const bool shifting = levels_[0].prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return false;
   const double t0 = now_seconds();
+  bool folded = false;
   for (Level<D>& L : levels_) {
     if (capillary)
-      surface_pass_sums_in_forces(L);
+      folded = surface_pass_sums_in_forces(L) || folded;
     else
       surface_pass_shifting_sums(L);
   }
+  if (capillary && !folded) refresh_all(t_eval);
   times_.surface += now_seconds() - t0;
-  return capillary;
+  return folded;
 }
 
-// After the force pass of a refreshing evaluation (surface_fields_all returned true): passes 2
-// and 3, the refresh clock, and the capillary acceleration added to each level's forces (whose
-// statistics `per_level` it updates).
+// After the force pass of an evaluation whose passes 2 and 3 waited for it (surface_fields_all
+// returned true): the refresh, and the capillary acceleration added to each level's forces
+// (whose statistics `per_level` it updates).
 template <int D>
 void Simulation<D>::refresh_after_forces(double t_eval, std::vector<ForceStats>& per_level) {
   const double t0 = now_seconds();
-  RefreshClock& clock = refresh_[0];
-  capillary_passes();
-  if (!clock.every_step())
-    for (Level<D>& L : levels_) L.sf.take_refresh(t_eval - clock.last());
-  clock.mark(t_eval);
-  ++times_.capillary_passes;
+  refresh_all(t_eval);
   for (std::size_t k = 0; k < levels_.size(); ++k) add_capillary(levels_[k], per_level[k]);
   times_.surface += now_seconds() - t0;
 }
 
+// refresh_all for level k alone (local time stepping): its buffers take lambda and the normal
+// from the other levels' held fields.
+template <int D>
+void Simulation<D>::refresh_level(std::size_t k, double t_eval) {
+  Level<D>& L = levels_[k];
+  RefreshClock& clock = refresh_[k];
+  coupling_.after_surface_sums(levels_, k);
+  surface_pass_normals(L);
+  coupling_.after_normals(levels_, k);
+  surface_pass_curvature(L);
+  if (!clock.every_step()) L.sf.take_refresh(t_eval - clock.last());
+  clock.mark(t_eval);
+  ++times_.capillary_passes;
+}
+
 // The surface fields of level k alone at t_eval (local time stepping), before its force pass: as
-// surface_fields_all, on the level's own clock; its buffers take lambda and the normal from the
-// other levels' held fields.
+// surface_fields_all, on the level's own clock.
 template <int D>
 bool Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corrector_stage) {
   if (!has_surface_fields()) return false;
@@ -112,28 +135,23 @@ bool Simulation<D>::surface_fields_level(std::size_t k, double t_eval, bool corr
   const bool shifting = L.prm.shifting.on();
   if (!capillary && !(shifting && corrector_stage)) return false;
   const double t0 = now_seconds();
-  if (capillary)
-    surface_pass_sums_in_forces(L);
-  else
+  bool folded = false;
+  if (capillary) {
+    folded = surface_pass_sums_in_forces(L);
+    if (!folded) refresh_level(k, t_eval);
+  } else {
     surface_pass_shifting_sums(L);
+  }
   times_.surface += now_seconds() - t0;
-  return capillary;
+  return folded;
 }
 
 // refresh_after_forces for level k alone.
 template <int D>
 void Simulation<D>::refresh_level_after_forces(std::size_t k, double t_eval, ForceStats& s) {
   const double t0 = now_seconds();
-  Level<D>& L = levels_[k];
-  RefreshClock& clock = refresh_[k];
-  coupling_.after_surface_sums(levels_, k);
-  surface_pass_normals(L);
-  coupling_.after_normals(levels_, k);
-  surface_pass_curvature(L);
-  if (!clock.every_step()) L.sf.take_refresh(t_eval - clock.last());
-  clock.mark(t_eval);
-  ++times_.capillary_passes;
-  add_capillary(L, s);
+  refresh_level(k, t_eval);
+  add_capillary(levels_[k], s);
   times_.surface += now_seconds() - t0;
 }
 
@@ -160,6 +178,10 @@ template void Simulation<2>::start_refresh_clocks();
 template void Simulation<3>::start_refresh_clocks();
 template void Simulation<2>::capillary_passes();
 template void Simulation<3>::capillary_passes();
+template void Simulation<2>::refresh_all(double);
+template void Simulation<3>::refresh_all(double);
+template void Simulation<2>::refresh_level(std::size_t, double);
+template void Simulation<3>::refresh_level(std::size_t, double);
 template bool Simulation<2>::surface_fields_all(double, bool);
 template bool Simulation<3>::surface_fields_all(double, bool);
 template void Simulation<2>::refresh_after_forces(double, std::vector<ForceStats>&);

@@ -1,7 +1,8 @@
-// Surface pass 1's pair terms in one slot layout, shared by the pass itself (solver/surface_pass.cpp)
-// and by the force pass (solver/forces.cpp), which can sum them in the same sweep as the pair
-// forces (Pass1InForces). The layout puts shifting's sums first, so that a sweep for shifting
-// alone takes the first D + 1 terms and a sweep for the whole pass takes them all:
+// Surface pass 1's pair terms in one slot layout, shared by the pass itself
+// (solver/surface_pass.cpp) and by the force pass (solver/forces.cpp), which can sum them in the
+// same sweep as the pair forces (Pass1InForces). The layout puts shifting's sums first, so that a
+// sweep for shifting alone takes the first D + 1 terms and a sweep for the whole pass takes them
+// all:
 //   grad C = sum_j V_j grad_i W_ij                         slots 0 .. D-1
 //   div r = -sum_j V_j r_ij . grad_i W_ij                  slot D
 //   M = -sum_j V_j r_ij (x) grad_i W_ij (Cen et al. 2024)  xx, xy, yy (2D); xx, xy, yy, xz, yz, zz
@@ -32,7 +33,7 @@ enum class Pass1InForces { none, shifting, full };
 template <int D>
 inline constexpr int kShiftingTerms = D + 1;
 template <int D, bool kGradW>
-inline constexpr int kPass1Terms = D + 1 + D * (D + 1) / 2 + 1 + (kGradW ? 1 : 0);
+inline constexpr int kPass1Terms = D + 1 + D*(D + 1) / 2 + 1 + (kGradW ? 1 : 0);
 
 // Sets the first N terms of the layout, for candidate j of volume vol_j, into slots kFirst ..
 // kFirst + N - 1 of s. Terms past N are not formed.
@@ -58,9 +59,8 @@ template <int D, int N, int kFirst, class T>
   constexpr int shep = m + D * (D + 1) / 2;
   t[shep] = shepard_pair(vol_j, g.w);
   t[shep + 1] = -vf * g.r;  // F <= 0: V_j |grad_i W_ij| = -V_j F r
-  [&]<int... k>(std::integer_sequence<int, k...>) {
-    ((slot<kFirst + k>(s) = t[k]), ...);
-  }(std::make_integer_sequence<int, N>{});
+  [&]<int... k>(std::integer_sequence<int, k...>) { ((slot<kFirst + k>(s) = t[k]), ...); }
+  (std::make_integer_sequence<int, N>{});
 }
 
 // V_i W(0), particle i's own term of the Shepard sum: its volume m_i / rho_i, times its weight
