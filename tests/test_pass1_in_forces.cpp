@@ -11,7 +11,7 @@
 //    particle pass 1's values, and hands the fluid rows to the next level_forces (the flag);
 //  - a refresh with pass 1 in the force pass and passes 2 and 3 after it (add_capillary) gives the
 //    accelerations of passes 1-3 before the force pass, bit for bit without walls; mixed precision
-//    and 3D run pass 1 apart.
+//    runs pass 1 apart.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -122,27 +122,28 @@ TEST(Pass1InForces, PassOneForShiftingLeavesFluidRowsToTheForcePass) {
   EXPECT_LT(worst, 1e-13);
 }
 
-// All of pass 1 in the force pass (2D: its 4 sums and pass 1's 8 fit one sweep).
+// All of pass 1 in the force pass (2D: its 4 sums and pass 1's 8 fill the sweep's 12).
+template <int D>
 void check_whole_pass_matches(Precision precision) {
   CloudOptions o;
   o.wall_layers = 2;
-  auto c = make_cloud<2>(14, ViscosityModel::laminar, DiffusionModel::molteni, o, 5);
+  auto c = make_cloud<D>(D == 2 ? 14 : 7, ViscosityModel::laminar, DiffusionModel::molteni, o, 5);
   c.prm.precision = precision;
   c.prm.sigma = 0.0728;  // pass 1 sums G too
-  ForceWorkspace<2> ws;
+  ForceWorkspace<D> ws;
   ws.pack(c.ps, c.grid, c.prm.eos, c.prm.precision);
-  SurfaceFields<2> sf;
+  SurfaceFields<D> sf;
   surface_sums(c.prm, c.ps, c.grid, ws, sf);
   ASSERT_EQ(sf.grad_w.size(), c.ps.size());
 
-  ParticleSet<2> plain = c.ps;
+  ParticleSet<D> plain = c.ps;
   compute_forces_packed(c.prm, plain, c.grid, ws);
-  SurfaceFields<2> in;
+  SurfaceFields<D> in;
   in.resize(c.ps.size());
   in.grad_w.assign(c.ps.size(), -7.0);
-  const Pass1Out<2> whole = in.pass1_out(true);
-  ASSERT_EQ(whole.terms, (kPass1Terms<2, true>));
-  compute_forces_packed<2>(c.prm, c.ps, c.grid, ws, nullptr, false, &whole);
+  const Pass1Out<D> whole = in.pass1_out(true);
+  ASSERT_EQ(whole.terms, (kPass1Terms<D, true>));
+  compute_forces_packed<D>(c.prm, c.ps, c.grid, ws, nullptr, false, &whole);
 
   const bool mixed = precision == Precision::mixed;
   const double tol = mixed ? 2e-6 : 1e-13, h = c.prm.h;
@@ -156,21 +157,21 @@ void check_whole_pass_matches(Precision precision) {
     worst = std::max(worst, std::abs(in.shepard[i] - sf.shepard[i]));
     worst = std::max(worst, std::abs(in.grad_w[i] - sf.grad_w[i]) * h);
     worst = std::max(worst, norm(in.grad_c[i] - sf.grad_c[i]) * h);
-    worst = std::max(worst, std::abs(in.div_r[i] - sf.div_r[i]) / 2);
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b)
+    worst = std::max(worst, std::abs(in.div_r[i] - sf.div_r[i]) / D);
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b)
         worst = std::max(worst, std::abs(in.l_corr[i](a, b) - sf.l_corr[i](a, b)) / 10);
-    for (int k = 0; k < 2; ++k) ASSERT_EQ(c.ps.acc[i][k], plain.acc[i][k]) << "particle " << i;
+    for (int k = 0; k < D; ++k) ASSERT_EQ(c.ps.acc[i][k], plain.acc[i][k]) << "particle " << i;
     ASSERT_EQ(c.ps.drho[i], plain.drho[i]) << "particle " << i;
   }
   ASSERT_GT(fluid, 100u);
   ASSERT_GT(thin, 20u) << "lambda must fall at the free faces for the check to bite";
-  EXPECT_LT(worst, tol) << (mixed ? "mixed" : "double");
+  EXPECT_LT(worst, tol) << D << "D, " << (mixed ? "mixed" : "double");
 }
 
 TEST(Pass1InForces, ForcePassSumsAllOfPassOne2D) {
-  check_whole_pass_matches(Precision::double_precision);
-  check_whole_pass_matches(Precision::mixed);
+  check_whole_pass_matches<2>(Precision::double_precision);
+  check_whole_pass_matches<2>(Precision::mixed);
 }
 
 // A refresh in both orders on a free block (no walls): passes 1-3, then the forces with a_st; or
@@ -214,19 +215,23 @@ TEST(Pass1InForces, RefreshAfterTheForcePassGivesTheSameAccelerations) {
 }
 
 // Mixed precision and 3D keep pass 1 apart (surface_sums_in_forces): the whole pass runs, the flag
-// stays clear.
+// stays clear; a double 2D level hands it to the force pass.
 TEST(Pass1InForces, MixedPrecisionAnd3DRunPassOneApart) {
-  auto c2 = make_cloud<2>(10, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, 2);
-  Level<2> L2;
-  L2.prm = c2.prm;
-  L2.prm.sigma = 0.0728;
-  L2.prm.precision = Precision::mixed;
-  L2.ps = c2.ps;
-  L2.grid = c2.grid;
-  pack_level(L2);
-  EXPECT_FALSE(surface_pass_sums_in_forces(L2));
-  EXPECT_EQ(L2.sf.in_forces, Pass1InForces::none);
-  EXPECT_GT(L2.sf.lambda[0], 0.0) << "the whole pass 1 ran";
+  auto c = make_cloud<2>(10, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, 2);
+  Level<2> L;
+  L.prm = c.prm;
+  L.prm.sigma = 0.0728;
+  L.prm.precision = Precision::mixed;
+  L.ps = c.ps;
+  L.grid = c.grid;
+  pack_level(L);
+  EXPECT_FALSE(surface_pass_sums_in_forces(L));
+  EXPECT_EQ(L.sf.in_forces, Pass1InForces::none);
+  EXPECT_GT(L.sf.lambda[0], 0.0) << "the whole pass 1 ran";
+  L.prm.precision = Precision::double_precision;
+  pack_level(L);
+  EXPECT_TRUE(surface_pass_sums_in_forces(L));
+  EXPECT_EQ(L.sf.in_forces, Pass1InForces::full);
 
   auto c3 = make_cloud<3>(6, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, 2);
   Level<3> L3;

@@ -152,7 +152,9 @@ void check_skip_changes_nothing(const std::vector<Vec<D>>& pos, double dp, Preci
   }
   EXPECT_GT(with_normal, 0u);
   EXPECT_GT(interior, a.ps.size() / 4) << "a drop with an interior, where the skip acts";
-  if (expect_skips) EXPECT_GT(skipped, interior / 4) << "the bound skips part of the interior";
+  if (expect_skips) {
+    EXPECT_GT(skipped, interior / 4) << "the bound skips part of the interior";
+  }
 }
 
 template <int D>

@@ -169,7 +169,9 @@ TEST(SurfaceRefresh, VariableResolutionDropHoldsItsFieldsThroughKindChanges) {
         const SurfaceFields<2>& sf = sim.level(l).sf;
         ASSERT_EQ(sf.acc_st.size(), sim.level(l).ps.size()) << l;
         ASSERT_EQ(sf.acc_rate.size(), sf.acc_ref.size()) << l;
-        if (!sf.acc_ref.empty()) ASSERT_EQ(sf.acc_ref.size(), sim.level(l).ps.size()) << l;
+        if (!sf.acc_ref.empty()) {
+          ASSERT_EQ(sf.acc_ref.size(), sim.level(l).ps.size()) << l;
+        }
       }
     }
     if (threads == 1) {
