@@ -29,16 +29,46 @@ namespace {
 using force_cloud::CloudOptions;
 using force_cloud::make_cloud;
 
+// A jittered block over two wall layers, its columns packed, and its surface pass 1.
 template <int D>
-void check_sums_match(Precision precision) {
+struct WalledBlock {
+  force_cloud::Cloud<D> c;
+  ForceWorkspace<D> ws;
+  SurfaceFields<D> sf;
+};
+template <int D>
+WalledBlock<D> walled_block(Precision precision, double sigma, std::uint64_t seed) {
   CloudOptions o;
   o.wall_layers = 2;
-  auto c = make_cloud<D>(D == 2 ? 14 : 7, ViscosityModel::laminar, DiffusionModel::molteni, o, 7);
-  c.prm.precision = precision;
-  ForceWorkspace<D> ws;
-  ws.pack(c.ps, c.grid, c.prm.eos, c.prm.precision);
-  SurfaceFields<D> sf;
-  surface_sums(c.prm, c.ps, c.grid, ws, sf);
+  WalledBlock<D> b{
+      make_cloud<D>(D == 2 ? 14 : 7, ViscosityModel::laminar, DiffusionModel::molteni, o, seed),
+      {},
+      {}};
+  b.c.prm.precision = precision;
+  b.c.prm.sigma = sigma;
+  b.ws.pack(b.c.ps, b.c.grid, b.c.prm.eos, b.c.prm.precision);
+  surface_sums(b.c.prm, b.c.ps, b.c.grid, b.ws, b.sf);
+  return b;
+}
+
+// A free jittered block of n^D particles as one level, with surface tension sigma.
+template <int D>
+Level<D> free_level(int n, double sigma, std::uint64_t seed) {
+  auto c = make_cloud<D>(n, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, seed);
+  Level<D> L;
+  L.prm = c.prm;
+  L.prm.sigma = sigma;
+  L.ps = c.ps;
+  L.grid = c.grid;
+  return L;
+}
+
+template <int D>
+void check_sums_match(Precision precision) {
+  WalledBlock<D> b = walled_block<D>(precision, 0.0, 7);
+  auto& c = b.c;
+  const ForceWorkspace<D>& ws = b.ws;
+  const SurfaceFields<D>& sf = b.sf;
 
   ParticleSet<D> plain = c.ps;
   compute_forces_packed(c.prm, plain, c.grid, ws);
@@ -125,15 +155,10 @@ TEST(Pass1InForces, PassOneForShiftingLeavesFluidRowsToTheForcePass) {
 // All of pass 1 in the force pass (2D: its 4 sums and pass 1's 8 fill the sweep's 12).
 template <int D>
 void check_whole_pass_matches(Precision precision) {
-  CloudOptions o;
-  o.wall_layers = 2;
-  auto c = make_cloud<D>(D == 2 ? 14 : 7, ViscosityModel::laminar, DiffusionModel::molteni, o, 5);
-  c.prm.precision = precision;
-  c.prm.sigma = 0.0728;  // pass 1 sums G too
-  ForceWorkspace<D> ws;
-  ws.pack(c.ps, c.grid, c.prm.eos, c.prm.precision);
-  SurfaceFields<D> sf;
-  surface_sums(c.prm, c.ps, c.grid, ws, sf);
+  WalledBlock<D> b = walled_block<D>(precision, 0.0728, 5);  // sigma: pass 1 sums G too
+  auto& c = b.c;
+  const ForceWorkspace<D>& ws = b.ws;
+  const SurfaceFields<D>& sf = b.sf;
   ASSERT_EQ(sf.grad_w.size(), c.ps.size());
 
   ParticleSet<D> plain = c.ps;
@@ -177,12 +202,7 @@ TEST(Pass1InForces, ForcePassSumsAllOfPassOne2D) {
 // A refresh in both orders on a free block (no walls): passes 1-3, then the forces with a_st; or
 // pass 1 in the force pass, passes 2 and 3 after it, a_st added.
 TEST(Pass1InForces, RefreshAfterTheForcePassGivesTheSameAccelerations) {
-  auto c = make_cloud<2>(16, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, 3);
-  c.prm.sigma = 0.0728;
-  Level<2> before;
-  before.prm = c.prm;
-  before.ps = c.ps;
-  before.grid = c.grid;
+  Level<2> before = free_level<2>(16, 0.0728, 3);
   Level<2> after = before;
 
   pack_level(before);
@@ -201,7 +221,7 @@ TEST(Pass1InForces, RefreshAfterTheForcePassGivesTheSameAccelerations) {
   add_capillary(after, s1);
 
   std::size_t pulled = 0;
-  for (std::size_t i = 0; i < c.ps.size(); ++i) {
+  for (std::size_t i = 0; i < before.ps.size(); ++i) {
     if (norm(before.sf.acc_st[i]) > 0.0) ++pulled;
     ASSERT_EQ(after.sf.lambda[i], before.sf.lambda[i]) << "particle " << i;
     for (int k = 0; k < 2; ++k) {
@@ -217,13 +237,8 @@ TEST(Pass1InForces, RefreshAfterTheForcePassGivesTheSameAccelerations) {
 // Mixed precision and 3D keep pass 1 apart (surface_sums_in_forces): the whole pass runs, the flag
 // stays clear; a double 2D level hands it to the force pass.
 TEST(Pass1InForces, MixedPrecisionAnd3DRunPassOneApart) {
-  auto c = make_cloud<2>(10, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, 2);
-  Level<2> L;
-  L.prm = c.prm;
-  L.prm.sigma = 0.0728;
+  Level<2> L = free_level<2>(10, 0.0728, 2);
   L.prm.precision = Precision::mixed;
-  L.ps = c.ps;
-  L.grid = c.grid;
   pack_level(L);
   EXPECT_FALSE(surface_pass_sums_in_forces(L));
   EXPECT_EQ(L.sf.in_forces, Pass1InForces::none);
@@ -233,12 +248,7 @@ TEST(Pass1InForces, MixedPrecisionAnd3DRunPassOneApart) {
   EXPECT_TRUE(surface_pass_sums_in_forces(L));
   EXPECT_EQ(L.sf.in_forces, Pass1InForces::full);
 
-  auto c3 = make_cloud<3>(6, ViscosityModel::laminar, DiffusionModel::molteni, CloudOptions{}, 2);
-  Level<3> L3;
-  L3.prm = c3.prm;
-  L3.prm.sigma = 0.0728;
-  L3.ps = c3.ps;
-  L3.grid = c3.grid;
+  Level<3> L3 = free_level<3>(6, 0.0728, 2);
   pack_level(L3);
   EXPECT_FALSE(surface_pass_sums_in_forces(L3));
   EXPECT_EQ(L3.sf.in_forces, Pass1InForces::none);
