@@ -106,15 +106,27 @@ Vec<D> coupling_net_force(const std::vector<Level<D>>& levels) {
 }
 
 // F_st: sum over fluid particles of m_i a_st,i (levels without surface tension give zero), in
-// lanes; mass gets sum_i m_i, the same bits as fluid_mass.
+// lanes; mass gets sum_i m_i, the same bits as fluid_mass. One pass over the particles on one
+// thread, the lanes side by side (independent chains of additions): a few microseconds for a
+// drop of 5,000 particles, less than the lane sum in parallel.
 template <int D>
 Vec<D> surface_net_force(const std::vector<Level<D>>& levels, double& mass) {
-  const MassAnd<D> s = fluid_lane_sum<MassAnd<D>>(levels, [](const Level<D>& L, std::size_t i) {
-    const bool st = L.sf.acc_st.size() == L.ps.size();
-    return MassAnd<D>{st ? L.ps.mass_of(i) * L.sf.acc_st[i] : Vec<D>{}, L.ps.mass_of(i)};
-  });
-  mass = s.m;
-  return s.v;
+  Vec<D> f_lane[kLanes] = {};
+  double m_lane[kLanes] = {};
+  for (const Level<D>& L : levels) {
+    const ParticleSet<D>& ps = L.ps;
+    const Vec<D>* a_st = L.sf.acc_st.size() == ps.size() ? L.sf.acc_st.data() : nullptr;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (ps.kind[i] != Kind::fluid) continue;
+      const double m = ps.mass_of(i);
+      if (a_st != nullptr) f_lane[i % kLanes] += m * a_st[i];
+      m_lane[i % kLanes] += m;
+    }
+  }
+  Vec<D> f{};
+  mass = 0.0;
+  for (int l = 0; l < kLanes; ++l) f += f_lane[l], mass += m_lane[l];
+  return f;
 }
 
 // Adds a (or, when velocity is true, dv) to every fluid particle of every level.
