@@ -10,8 +10,8 @@
 //  - surface_sums_for_shifting leaves the fluid particles' lambda as it was, gives a buffer
 //    particle pass 1's values, and hands the fluid rows to the next level_forces (the flag);
 //  - a refresh with pass 1 in the force pass and passes 2 and 3 after it (add_capillary) gives the
-//    accelerations of passes 1-3 before the force pass, bit for bit without walls; mixed precision
-//    runs pass 1 apart.
+//    accelerations of passes 1-3 before the force pass, bit for bit without walls; 3D runs pass 1
+//    apart.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -201,8 +201,9 @@ TEST(Pass1InForces, ForcePassSumsAllOfPassOne2D) {
 
 // A refresh in both orders on a free block (no walls): passes 1-3, then the forces with a_st; or
 // pass 1 in the force pass, passes 2 and 3 after it, a_st added.
-TEST(Pass1InForces, RefreshAfterTheForcePassGivesTheSameAccelerations) {
+void check_refresh_orders(Precision precision) {
   Level<2> before = free_level<2>(16, 0.0728, 3);
+  before.prm.precision = precision;
   Level<2> after = before;
 
   pack_level(before);
@@ -234,19 +235,22 @@ TEST(Pass1InForces, RefreshAfterTheForcePassGivesTheSameAccelerations) {
   EXPECT_EQ(s1.pairs, s0.pairs);
 }
 
-// Mixed precision and 3D keep pass 1 apart (surface_sums_in_forces): the whole pass runs, the flag
-// stays clear; a double 2D level hands it to the force pass.
-TEST(Pass1InForces, MixedPrecisionAnd3DRunPassOneApart) {
+TEST(Pass1InForces, RefreshAfterTheForcePassGivesTheSameAccelerations) {
+  check_refresh_orders(Precision::double_precision);
+  check_refresh_orders(Precision::mixed);
+}
+
+// 3D keeps pass 1 apart (surface_sums_in_forces: 5 + 12 sums exceed the sweep's 12): the whole
+// pass runs, the flag stays clear; a 2D level hands it to the force pass in either precision.
+TEST(Pass1InForces, ThreeDRunsPassOneApart) {
   Level<2> L = free_level<2>(10, 0.0728, 2);
-  L.prm.precision = Precision::mixed;
-  pack_level(L);
-  EXPECT_FALSE(surface_pass_sums_in_forces(L));
-  EXPECT_EQ(L.sf.in_forces, Pass1InForces::none);
-  EXPECT_GT(L.sf.lambda[0], 0.0) << "the whole pass 1 ran";
-  L.prm.precision = Precision::double_precision;
-  pack_level(L);
-  EXPECT_TRUE(surface_pass_sums_in_forces(L));
-  EXPECT_EQ(L.sf.in_forces, Pass1InForces::full);
+  for (Precision p : {Precision::mixed, Precision::double_precision}) {
+    L.prm.precision = p;
+    pack_level(L);
+    EXPECT_TRUE(surface_pass_sums_in_forces(L));
+    EXPECT_EQ(L.sf.in_forces, Pass1InForces::full);
+    L.sf.in_forces = Pass1InForces::none;
+  }
 
   Level<3> L3 = free_level<3>(6, 0.0728, 2);
   pack_level(L3);

@@ -117,6 +117,25 @@ inline void fluid_sweep(const SolverParams<D>& prm, const Self<T>& me, const Sta
       prm.kernel, me.x, st.base, spans, count, fluid_pair<D, VM, DM, kWall, kSurf>(prm, me), out.s,
       out.max_visc_dt, me.x_lo);
 }
+// The same as a function of its own, for the sweeps that carry all of pass 1: inlined into the
+// pass's body, the 12 sums of the fluid and the wall sweeps spilled to the stack (the joined sweep
+// took 1.24x the samples of two separate passes in float; apart, 0.9x: docs/validation.md).
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, int kSurf, class T>
+[[gnu::noinline]] void fluid_sweep_apart(const SolverParams<D>& prm, const Self<T>& me,
+                                         const StateRuns<D, T>& st, const Span* spans, int count,
+                                         ForceSums& out) {
+  fluid_sweep<D, VM, DM, kWall, kSurf>(prm, me, st, spans, count, out);
+}
+// fluid_sweep, apart where it carries more than shifting's terms.
+template <int D, ViscosityModel VM, DiffusionModel DM, bool kWall, int kSurf, class T>
+inline void fluid_sweep_for(const SolverParams<D>& prm, const Self<T>& me,
+                            const StateRuns<D, T>& st, const Span* spans, int count,
+                            ForceSums& out) {
+  if constexpr (kSurf > kShiftingTerms<D>)
+    fluid_sweep_apart<D, VM, DM, kWall, kSurf>(prm, me, st, spans, count, out);
+  else
+    fluid_sweep<D, VM, DM, kWall, kSurf>(prm, me, st, spans, count, out);
+}
 
 // Continuity of wall particle i over its fluid block (dynamic boundary, physics/walls.hpp).
 // kVol: the block column of the neighbours' volume, ForceCol::wall_vol where buffer particles
@@ -219,8 +238,8 @@ ForceStats force_pass(const ForceCall<D>& call) {
       else
         wall_sweep<D, ForceCol<D>::vol>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
     } else {
-      fluid_sweep<D, VM, DM, false, kSurf>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
-      fluid_sweep<D, VM, DM, true, kSurf>(prm, me, st, sc.wall.span, sc.wall.count, s);
+      fluid_sweep_for<D, VM, DM, false, kSurf>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
+      fluid_sweep_for<D, VM, DM, true, kSurf>(prm, me, st, sc.wall.span, sc.wall.count, s);
       if constexpr (kSurf > 0) pass1->store(i, s.s + 2 + D, shepard_self(ps, cols, i, w0));
     }
     Vec<D> a = acceleration<D>(s);

@@ -274,8 +274,8 @@ template <int D>
 bool surface_sums_in_forces(const SolverParams<D>& prm, const ParticleSet<D>& ps,
                             const CellGrid<D>& grid, const LevelColumns<D>& cols,
                             SurfaceFields<D>& sf) {
-  const bool in_forces = kForcePassSumsPass1<D> && prm.precision == Precision::double_precision &&
-                         prm.sigma > 0.0 && sf.cross.empty() && sf.h_wide.empty();
+  const bool in_forces =
+      kForcePassSumsPass1<D> && prm.sigma > 0.0 && sf.cross.empty() && sf.h_wide.empty();
   with_pair_type(prm.precision,
                  [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, !in_forces); });
   sf.in_forces = in_forces ? Pass1InForces::full : Pass1InForces::none;

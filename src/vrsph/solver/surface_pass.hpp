@@ -126,10 +126,7 @@ bool surface_sums_for_shifting(const SolverParams<D>& prm, const ParticleSet<D>&
 // Pass 1 with the fluid particles' rows left to the level's next force pass (all of pass 1 in the
 // same sweep as the pair forces, Pass1InForces::full): a capillary refresh whose passes 2 and 3
 // run after the force pass. Where the force pass cannot (fields across levels, or 3D, whose 17
-// sums exceed a sweep's 12) or does not gain (mixed precision) it runs the whole pass 1 and
-// returns false. In double the joined sweep took 0.80 of the two sweeps' samples on droplet_2d;
-// in float 1.24: its 12 float sums per particle spill to the stack and their reduction to double
-// outweighed the shared geometry (docs/validation.md, "Pass 1 in the force pass").
+// sums exceed a sweep's 12) it runs the whole pass 1 and returns false.
 template <int D>
 bool surface_sums_in_forces(const SolverParams<D>& prm, const ParticleSet<D>& ps,
                             const CellGrid<D>& grid, const LevelColumns<D>& cols,
