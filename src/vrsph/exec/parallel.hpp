@@ -59,6 +59,20 @@ inline void for_each_with(std::int64_t n, int chunk, Body&& body) {
       n, chunk, [&](std::int64_t i, Scratch& scratch, Nothing&) { body(i, scratch); });
 }
 
+// The largest of `floor` and body(i) over i in [0, n), in dynamic chunks; a maximum, so the
+// same for any thread count. body may also write the entries of i (gather form).
+template <class Body>
+inline double max_of(std::int64_t n, int chunk, double floor, Body&& body) {
+  struct Max {
+    double v = -1e300;
+    void merge(const Max& o) { v = std::max(v, o.v); }
+  };
+  struct None {};
+  const Max m = for_each_gather<None, Max>(
+      n, chunk, [&](std::int64_t i, None&, Max& acc) { acc.v = std::max(acc.v, body(i)); });
+  return std::max(floor, m.v);
+}
+
 // The lowest i in [0, n) with pred(i), or n when there is none: the same answer for any thread
 // count (diagnoses name the same particle).
 template <class Pred>

@@ -52,18 +52,13 @@ template <int D>
 void add_capillary(Level<D>& L, ForceStats& s) {
   ParticleSet<D>& ps = L.ps;
   const std::vector<Vec<D>>& a_st = L.sf.acc_st;
-  struct MaxAcc2 {
-    double v = 0.0;
-    void merge(const MaxAcc2& o) { v = std::max(v, o.v); }
-  };
-  struct None {};
-  const MaxAcc2 m = exec::for_each_gather<None, MaxAcc2>(
-      static_cast<std::int64_t>(ps.size()), 1024, [&](std::int64_t i, None&, MaxAcc2& acc) {
-        if (ps.kind[i] != Kind::fluid) return;
+  const double max_acc2 =
+      exec::max_of(static_cast<std::int64_t>(ps.size()), 1024, 0.0, [&](std::int64_t i) {
+        if (ps.kind[i] != Kind::fluid) return 0.0;
         ps.acc[i] += a_st[i];
-        acc.v = std::max(acc.v, norm2(ps.acc[i]));
+        return norm2(ps.acc[i]);
       });
-  s.max_acc = std::sqrt(m.v);
+  s.max_acc = std::sqrt(max_acc2);
 }
 
 // Predictor (dt/2): x+ = x + dt/2 v, v+ = v + dt/2 (a + g), rho+ = rho + dt/2 drho.
@@ -149,16 +144,9 @@ void damp_fluid_velocities(Level<D>& L, double factor) {
 
 template <int D>
 DtChoice level_dt(const Level<D>& L, const ForceStats& s, double c0) {
-  struct Max {
-    double v2 = 0.0;
-    void merge(const Max& o) { v2 = std::max(v2, o.v2); }
-  };
-  struct None {};
-  const Max vmax = exec::for_each_gather<None, Max>(
-      static_cast<std::int64_t>(L.ps.size()), 1024, [&](std::int64_t i, None&, Max& acc) {
-        if (L.ps.kind[i] != Kind::wall) acc.v2 = std::max(acc.v2, norm2(L.ps.vel[i]));
-      });
-  const double vmax2 = vmax.v2;
+  const double vmax2 = exec::max_of(
+      static_cast<std::int64_t>(L.ps.size()), 1024, 0.0,
+      [&](std::int64_t i) { return L.ps.kind[i] != Kind::wall ? norm2(L.ps.vel[i]) : 0.0; });
   const DtInputs in{L.prm.h,
                     L.prm.cfl,
                     c0,
