@@ -190,13 +190,13 @@ ForceStats Simulation<D>::evaluate_level(std::size_t k, double t_eval, bool corr
                                          double dt) {
   Level<D>& L = levels_[k];
   pack(k);
-  const bool after = surface_fields_level(k, t_eval, corrector_stage);  // passes 2, 3 after
+  const bool after = surface_fields(k, k + 1, t_eval, corrector_stage);  // passes 2, 3 after
   double t0 = now_seconds();
   const bool st = L.prm.sigma > 0.0;
   ForceStats s =
       level_forces(L, st && !after, corrector_stage && coupling_.wants_buffer_reaction());
   times_.forces += now_seconds() - t0;
-  if (after) refresh_level_after_forces(k, t_eval, s);
+  if (after) refresh_after_forces(k, k + 1, t_eval, &s);
   t0 = now_seconds();
   if (corrector_stage && coupling_.corrects_net_force(st))
     impulse_ += dt * coupling_.net_force(levels_, k, st);

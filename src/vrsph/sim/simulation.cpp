@@ -201,15 +201,15 @@ DtChoice Simulation<D>::next_dt(const ForceStats& s) const {
 // the force pass, which summed pass 1), then the coupling's net-force corrections.
 template <int D>
 ForceStats Simulation<D>::evaluate_forces(double t_eval, bool corrector_stage) {
-  for (std::size_t k = 0; k < levels_.size(); ++k) pack(k);        // once, for every pass below
-  const bool after = surface_fields_all(t_eval, corrector_stage);  // passes 2, 3 after forces
+  for (std::size_t k = 0; k < levels_.size(); ++k) pack(k);  // once, for every pass below
+  const bool after = surface_fields(0, levels_.size(), t_eval, corrector_stage);  // 2, 3 after
   double t0 = now_seconds();
   const bool st = levels_[0].prm.sigma > 0.0;
   level_stats_.resize(levels_.size());
   for (std::size_t k = 0; k < levels_.size(); ++k)
     level_stats_[k] = level_forces(levels_[k], st && !after, coupling_.wants_buffer_reaction());
   times_.forces += now_seconds() - t0;
-  if (after) refresh_after_forces(t_eval, level_stats_);
+  if (after) refresh_after_forces(0, levels_.size(), t_eval, level_stats_.data());
   t0 = now_seconds();
   ForceStats s;
   for (const ForceStats& ls : level_stats_) s.merge(ls);

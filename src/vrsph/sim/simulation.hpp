@@ -163,11 +163,12 @@ class Simulation {
   void check_state(const Level<D>& L) const;
   void check_dt() const;
   ForceStats evaluate_forces(double t_eval, bool corrector_stage);
-  bool surface_fields_all(double t_eval, bool corrector_stage);
-  void refresh_after_forces(double t_eval, std::vector<ForceStats>& per_level);
-  void capillary_passes();
-  void refresh_all(double t_eval);
-  void refresh_level(std::size_t k, double t_eval);
+  // Surface passes of levels [first, last) (sim/simulation_surface.cpp): all levels with one dt,
+  // one level with local time stepping.
+  bool surface_fields(std::size_t first, std::size_t last, double t_eval, bool corrector_stage);
+  void refresh_after_forces(std::size_t first, std::size_t last, double t_eval, ForceStats* stats);
+  void capillary_passes(std::size_t first, std::size_t last);
+  void refresh(std::size_t first, std::size_t last, double t_eval);
   void start_refresh_clocks();
   // Local time stepping (sim/local_stepping.cpp).
   void start_local_stepping();
@@ -176,8 +177,6 @@ class Simulation {
   void cycle_child(std::size_t c, double t0, double t1);
   void step_one_level(std::size_t k, double t0, double dt);
   ForceStats evaluate_level(std::size_t k, double t_eval, bool corrector_stage, double dt);
-  bool surface_fields_level(std::size_t k, double t_eval, bool corrector_stage);
-  void refresh_level_after_forces(std::size_t k, double t_eval, ForceStats& s);
   void couple_level(std::size_t k, double dt, double t);
   std::vector<double> donor_fractions(double t) const;
   void check_level_dt(std::size_t k) const;
