@@ -100,7 +100,7 @@ inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
     PairSumsT<T> s;  // drho/dt, pair count, acceleration, viscous dt measure
     s.s0 = dr, s.s1 = g.in, s.s2 = ax, s.s3 = ay;
     if constexpr (D == 3) s.s4 = az;
-    if constexpr (kSurf > 0) add_pass1_terms<D, kSurf, 2 + D>(g, vol_j, s);
+    if constexpr (kSurf > 0) set_pass1_terms<D, kSurf, 2 + D>(g, vol_j, s);
     s.max = g.in != T(0) ? viscous_dt_measure(vij_dot_rij, inv_r2eta) : PairSumsT<T>::lowest();
     return s;
   };

@@ -38,7 +38,7 @@ inline constexpr int kPass1Terms = D + 1 + D*(D + 1) / 2 + 1 + (kGradW ? 1 : 0);
 // Sets the first N terms of the layout, for candidate j of volume vol_j, into slots kFirst ..
 // kFirst + N - 1 of s. Terms past N are not formed.
 template <int D, int N, int kFirst, class T>
-[[gnu::always_inline]] inline void add_pass1_terms(const PairGeometryT<T>& g, T vol_j,
+[[gnu::always_inline]] inline void set_pass1_terms(const PairGeometryT<T>& g, T vol_j,
                                                    PairSumsT<T>& s) {
   static_assert(N <= kPass1Terms<D, true> && kFirst + N <= 12, "pass 1 has at most 12 terms");
   const T vf = vol_j * g.f;

@@ -259,27 +259,36 @@ void surface_sums(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
                  [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, true); });
 }
 
+namespace {
+
+// Pass 1 with its fluid rows handed to the level's next force pass as `mode` where `can` and no
+// field is summed across levels; otherwise the whole pass. Returns whether it handed them over.
+template <int D>
+bool sums_handing_over(const SolverParams<D>& prm, const ParticleSet<D>& ps,
+                       const CellGrid<D>& grid, const LevelColumns<D>& cols, SurfaceFields<D>& sf,
+                       bool can, Pass1InForces mode) {
+  const bool in_forces = can && sf.cross.empty() && sf.h_wide.empty();
+  with_pair_type(prm.precision,
+                 [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, !in_forces); });
+  sf.in_forces = in_forces ? mode : Pass1InForces::none;
+  return in_forces;
+}
+
+}  // namespace
+
 template <int D>
 bool surface_sums_for_shifting(const SolverParams<D>& prm, const ParticleSet<D>& ps,
                                const CellGrid<D>& grid, const LevelColumns<D>& cols,
                                SurfaceFields<D>& sf) {
-  const bool in_forces = sf.cross.empty() && sf.h_wide.empty();
-  with_pair_type(prm.precision,
-                 [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, !in_forces); });
-  sf.in_forces = in_forces ? Pass1InForces::shifting : Pass1InForces::none;
-  return in_forces;
+  return sums_handing_over(prm, ps, grid, cols, sf, true, Pass1InForces::shifting);
 }
 
 template <int D>
 bool surface_sums_in_forces(const SolverParams<D>& prm, const ParticleSet<D>& ps,
                             const CellGrid<D>& grid, const LevelColumns<D>& cols,
                             SurfaceFields<D>& sf) {
-  const bool in_forces =
-      kForcePassSumsPass1<D> && prm.sigma > 0.0 && sf.cross.empty() && sf.h_wide.empty();
-  with_pair_type(prm.precision,
-                 [&](auto t) { sums_pass<D, decltype(t)>(prm, ps, grid, cols, sf, !in_forces); });
-  sf.in_forces = in_forces ? Pass1InForces::full : Pass1InForces::none;
-  return in_forces;
+  return sums_handing_over(prm, ps, grid, cols, sf, kForcePassSumsPass1<D> && prm.sigma > 0.0,
+                           Pass1InForces::full);
 }
 
 template <int D>

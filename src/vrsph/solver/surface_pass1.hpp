@@ -17,7 +17,7 @@ struct Pass1Pair {
   static constexpr int kSums = kPass1Terms<D, kGradW>;
   PairSumsT<T> operator()(const PairGeometryT<T>& g, const Neighbour<S::K, T>& nb) const {
     PairSumsT<T> s;
-    add_pass1_terms<D, kSums, 0>(g, nb[D], s);
+    set_pass1_terms<D, kSums, 0>(g, nb[D], s);
     return s;
   }
 };
