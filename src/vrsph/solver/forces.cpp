@@ -11,7 +11,6 @@
 #include "vrsph/physics/continuity.hpp"
 #include "vrsph/physics/density_diffusion.hpp"
 #include "vrsph/physics/pressure.hpp"
-#include "vrsph/physics/shifting.hpp"
 #include "vrsph/physics/viscosity.hpp"
 
 namespace vrsph {
