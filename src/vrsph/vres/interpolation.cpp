@@ -9,32 +9,59 @@ namespace {
 // The sums over the donors of the dimensionless system (see the header):
 //   a = sum_j [V_j W, V_j h grad W] (outer) [1, (x_j - x)/h],  grad W = F(r) (x - x_j);
 //   rhs[q] = sum_j f_j^q [V_j W, V_j h grad W] for f^0 = rho, f^(1+k) = vel_k;
-//   div_r = -sum_j V_j F(r) r^2.
+//   div_r = -sum_j V_j F(r) r^2;  shepard_buffer = sum over the donor's buffer particles of V_j W.
 template <int D>
 struct DonorSums {
   static constexpr int N = D + 1;
   typename SmallLu<N>::Matrix a{};
   std::array<typename SmallLu<N>::Vector, N> rhs{};
   double div_r = 0.0;
+  double shepard_buffer = 0.0;
 
-  void add(const Vec<D>& r, double r2, double vol, double rho, const Vec<D>& vel,
-           const WendlandC2<D>& kernel) {
-    const double dist = std::sqrt(r2);
-    const double vw = vol * kernel.w(dist);
-    const double vf = vol * kernel.f(dist);
-    std::array<double, N> row{}, col{};  // row: test functions; col: Taylor terms
-    row[0] = vw;
-    col[0] = 1.0;
-    for (int k = 0; k < D; ++k) {
-      row[k + 1] = vf * kernel.h * r[k];
-      col[k + 1] = -r[k] * kernel.inv_h;
+  // Adds a piece of donors (within reach of x, in index order). First what each donor gives on
+  // its own (r, r^2, V W, V F: independent, so the compiler vectorises it), then the sums in
+  // donor order with the accumulators in registers. Summed donor by donor with the kernel inside
+  // the loop, the accumulators lived in memory (the compiler could not rule out that they alias
+  // the donors' arrays) and each sqrt's latency sat in the chain (the interpolation: 14.7% of a
+  // one-thread VR drop's samples, 12.0% this way). The same operations in the same order: the
+  // same bits.
+  void add_piece(const Vec<D>& x, const std::uint32_t* kept, std::uint32_t n,
+                 const DonorState<D>& dn) {
+    const WendlandC2<D>& kernel = dn.kernel;
+    double r[D][kWithinPiece], r2[kWithinPiece], vw[kWithinPiece], vf[kWithinPiece];
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::uint32_t j = kept[k];
+      const Vec<D> d = x - dn.pos[j];
+      for (int q = 0; q < D; ++q) r[q][k] = d[q];
+      r2[k] = norm2(d);
+      const double dist = std::sqrt(r2[k]);
+      vw[k] = dn.vol[j] * kernel.w(dist);
+      vf[k] = dn.vol[j] * kernel.f(dist);
     }
-    for (int i = 0; i < N; ++i) {
-      for (int j = 0; j < N; ++j) a[i][j] += row[i] * col[j];
-      rhs[0][i] += row[i] * rho;
-      for (int k = 0; k < D; ++k) rhs[k + 1][i] += row[i] * vel[k];
+    DonorSums t = *this;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::uint32_t j = kept[k];
+      if (dn.ps.kind[j] != Kind::fluid) {  // buffer: counted in the fill only
+        t.shepard_buffer += vw[k];
+        continue;
+      }
+      std::array<double, N> row{}, col{};  // row: test functions; col: Taylor terms
+      row[0] = vw[k];
+      col[0] = 1.0;
+      for (int q = 0; q < D; ++q) {
+        row[q + 1] = vf[k] * kernel.h * r[q][k];
+        col[q + 1] = -r[q][k] * kernel.inv_h;
+      }
+      const double rho = dn.rho[j];
+      const Vec<D> vel = dn.vel[j];
+      for (int i = 0; i < N; ++i) {
+        for (int c = 0; c < N; ++c) t.a[i][c] += row[i] * col[c];
+        t.rhs[0][i] += row[i] * rho;
+        for (int q = 0; q < D; ++q) t.rhs[q + 1][i] += row[i] * vel[q];
+      }
+      t.div_r -= vf[k] * r2[k];
     }
-    div_r -= vf * r2;
+    *this = t;
   }
 };
 
@@ -51,17 +78,12 @@ InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>
   DonorSums<D> s;
   const Vec<D>* pos = dn.pos;
   auto at = [pos](std::uint32_t j) { return pos[j]; };
-  for_each_within(dn.grid, c, Group::fluid, x, kernel.support2, at,
-                  [&](std::uint32_t j, const Vec<D>& r, double r2) {
-                    const double rho_j = dn.rho[j];
-                    if (donors.kind[j] != Kind::fluid) {  // buffer: counted in the fill only
-                      out.shepard_buffer += donors.mass_of(j) / rho_j * kernel.w(std::sqrt(r2));
-                      return;
-                    }
-                    s.add(r, r2, donors.mass_of(j) / rho_j, rho_j, dn.vel[j], kernel);
-                  });
+  for_each_within_piece(
+      dn.grid, c, Group::fluid, x, kernel.support2, at,
+      [&](const std::uint32_t* kept, std::uint32_t n) { s.add_piece(x, kept, n, dn); });
   out.shepard = s.a[0][0];
   out.div_r = s.div_r;
+  out.shepard_buffer = s.shepard_buffer;
   auto now = [&](std::uint32_t j) { return donors.pos[j]; };
   for_each_within(dn.grid, c, Group::wall, x, kernel.support2, now,
                   [&](std::uint32_t j, const Vec<D>&, double r2) {
@@ -90,17 +112,23 @@ template <int D>
 DonorState<D>::DonorState(const ParticleSet<D>& p, const CellGrid<D>& g, const WendlandC2<D>& k,
                           double a)
     : ps(p), grid(g), kernel(k), pos(p.pos.data()), vel(p.vel.data()), rho(p.rho.data()) {
-  if (a == 1.0 || p.size() == 0) return;
   const std::size_t n = p.size();
-  pos_a_.resize(n);
-  vel_a_.resize(n);
-  rho_a_.resize(n);
-  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t j) {
-    pos_a_[j] = p.pos0[j] + a * (p.pos[j] - p.pos0[j]);
-    vel_a_[j] = p.vel0[j] + a * (p.vel[j] - p.vel0[j]);
-    rho_a_[j] = p.rho0[j] + a * (p.rho[j] - p.rho0[j]);
-  });
-  pos = pos_a_.data(), vel = vel_a_.data(), rho = rho_a_.data();
+  if (a != 1.0 && n > 0) {
+    pos_a_.resize(n);
+    vel_a_.resize(n);
+    rho_a_.resize(n);
+    exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t j) {
+      pos_a_[j] = p.pos0[j] + a * (p.pos[j] - p.pos0[j]);
+      vel_a_[j] = p.vel0[j] + a * (p.vel[j] - p.vel0[j]);
+      rho_a_[j] = p.rho0[j] + a * (p.rho[j] - p.rho0[j]);
+    });
+    pos = pos_a_.data(), vel = vel_a_.data(), rho = rho_a_.data();
+  }
+  vol_.resize(n);
+  const double* r = rho;
+  exec::for_each(static_cast<std::int64_t>(n),
+                 [&](std::int64_t j) { vol_[j] = p.mass_of(static_cast<std::size_t>(j)) / r[j]; });
+  vol = vol_.data();
 }
 
 template <int D>

@@ -81,8 +81,8 @@ inline double donor_fill(const InterpolatedState<D>& s) {
 
 // Values at point x from the Kind::fluid particles of a donor level (particle set, its cell grid
 // after a sort, its kernel). Points with no donor in reach (also beyond the particle cloud or
-// the domain) return shepard = 0. No heap allocation for a = 1 (a batch of points with a < 1
-// forms the donor state once: DonorState, interpolate_from_donor).
+// the domain) return shepard = 0. Forms the donor state (DonorState) for this one point: a batch
+// of points forms it once and calls interpolate_from_donor.
 // Local time stepping: `a` in [0, 1] is the time within the donor's last step, as a fraction of
 // it, and each donor's position, velocity and density are interpolated linearly between the
 // step's start (pos0, vel0, rho0) and its end; a = 1 (the default) reads the current state. The
@@ -99,7 +99,9 @@ InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D
 
 // A donor level as a batch of interpolations reads it: the positions, velocities and densities of
 // its particles at the fraction a of its last step (as interpolate_from_level forms them), formed
-// once for all the points of the batch; for a = 1 the particle set's own arrays.
+// once for all the points of the batch (for a = 1 the particle set's own arrays), and their
+// volumes m_j / rho_j (each point's support holds some 20 donors, and every donor serves several
+// points: one division per donor and batch instead of one per donor and point, the same bits).
 template <int D>
 class DonorState {
  public:
@@ -114,10 +116,11 @@ class DonorState {
   const Vec<D>* pos = nullptr;
   const Vec<D>* vel = nullptr;
   const double* rho = nullptr;
+  const double* vol = nullptr;  // m_j / rho_j
 
  private:
   std::vector<Vec<D>> pos_a_, vel_a_;
-  std::vector<double> rho_a_;
+  std::vector<double> rho_a_, vol_;
 };
 
 // interpolate_from_level from a donor state: the same values, bit for bit.
