@@ -205,6 +205,27 @@ TEST(CliUnstable, TinySoundSpeedFailsTheDensityCheck) {
   EXPECT_TRUE(fs::exists(out / snapshot(0, "csv")));
 }
 
+// Fluid at four times the sound speed: the next dt falls below 0.05 h / c0 after the first step.
+// The diagnosis names the fastest fluid particle (the accelerations are gone after the step's last
+// sort, so a particle named by its acceleration would be a stranger).
+TEST(CliUnstable, FluidFasterThanSoundFailsTheDtCheck) {
+  TempDir dir;
+  dir.write("tiny.toml", kTiny);
+  const fs::path out = dir / "run";
+  const CmdResult r = dir.run({"run", "tiny.toml", "--out", out.string(), "--quiet", "--threads",
+                               "1", "--set", "fluid_block.0.velocity=[8, 0]", "--set",
+                               "eos.sound_speed=2", "--set", "case.end_time=0.5"});
+  expect_unstable(r, out, "dt");
+  const std::string l = r.err_lines().empty() ? "" : r.err_lines()[0];
+  const std::smatch m = [&] {
+    std::smatch s;
+    std::regex_search(l, s, std::regex(R"(fastest fluid particle id \d+ .* speed ([0-9.]+) m/s)"));
+    return s;
+  }();
+  ASSERT_EQ(m.size(), 2u) << l;
+  EXPECT_NEAR(std::stod(m[1].str()), 8.0, 0.1) << l;  // the fluid's speed after one short step
+}
+
 TEST(CliUnstable, FluidLeavingTheDomainFailsTheDomainCheck) {
   TempDir dir;
   dir.write("tiny.toml", kTiny);

@@ -236,14 +236,7 @@ template <int D>
 void Simulation<D>::check_level_dt(std::size_t k) const {
   const Level<D>& L = levels_[k];
   if (level_dt_[k] >= L.prm.dt_min) return;
-  std::string culprit = "the fastest particles or largest accelerations";
-  double amax = -1.0;
-  for (std::size_t i = 0; i < L.ps.size(); ++i) {
-    if (L.ps.kind[i] != Kind::fluid || norm(L.ps.acc[i]) <= amax) continue;
-    amax = norm(L.ps.acc[i]);
-    culprit =
-        fmt::format("largest acceleration {:.3g} m/s^2 at fluid particle id {}", amax, L.ps.id[i]);
-  }
+  const std::string culprit = fastest_fluid(k, k + 1);
   throw InstabilityError(
       fmt::format("unstable at t = {:.6g} s, step {}: level {} time step {:.3g} s fell below "
                   "0.05 h/c0 = {:.3g} s (check: dt; {})",

@@ -162,6 +162,8 @@ class Simulation {
   void sort_all(bool step_copies = true);
   void check_state(const Level<D>& L) const;
   void check_dt() const;
+  // The fastest fluid particle of levels [first, last), as a diagnosis names it.
+  std::string fastest_fluid(std::size_t first, std::size_t last) const;
   ForceStats evaluate_forces(double t_eval, bool corrector_stage);
   // Surface passes of levels [first, last) (sim/simulation_surface.cpp): all levels with one dt,
   // one level with local time stepping.
