@@ -24,6 +24,18 @@ struct Level {
   // normal of the nearest interface face), set before each corrector by whoever owns the buffers.
   // Empty when the level has no buffer.
   std::vector<Vec<D>> buffer_shift_normal;
+  // A uniform acceleration of every fluid particle from the last force evaluation, beyond ps.acc:
+  // the net-force corrections of vres/momentum.hpp (zero_net_force, vres_conserve_momentum with
+  // one dt), which the integrator adds (fluid_acceleration) instead of a pass that adds it to
+  // ps.acc. Zero after each force pass until a correction sets it.
+  Vec<D> fluid_acc_uniform{};
 };
+
+// The acceleration the integrator gives fluid particle i (gravity excluded): ps.acc[i] plus the
+// level's uniform correction where there is one (the same bits as adding it to ps.acc first).
+template <int D>
+inline Vec<D> fluid_acceleration(const Level<D>& L, std::size_t i, bool uniform) {
+  return uniform ? L.ps.acc[i] + L.fluid_acc_uniform : L.ps.acc[i];
+}
 
 }  // namespace vrsph

@@ -43,6 +43,7 @@ ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction) {
   const Pass1InForces mode = L.sf.in_forces;
   L.sf.in_forces = Pass1InForces::none;
   const Pass1Out<D> pass1 = L.sf.pass1_out(mode == Pass1InForces::full);
+  L.fluid_acc_uniform = Vec<D>{};
   return compute_forces_packed(L.prm, L.ps, L.grid, L.cols,
                                capillary ? L.sf.acc_st.data() : nullptr, buffer_reaction,
                                mode == Pass1InForces::none ? nullptr : &pass1);
@@ -73,6 +74,7 @@ void predictor(Level<D>& L, double dt) {
   const double rho0 = L.prm.eos.rho0;
   const Vec<D> g = L.prm.gravity;
   const bool keep_x = ps.keeps_pos0;
+  const bool uniform = L.fluid_acc_uniform != Vec<D>{};
   exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     if (keep_x) ps.pos0[i] = ps.pos[i];
     ps.vel0[i] = ps.vel[i];
@@ -87,7 +89,7 @@ void predictor(Level<D>& L, double dt) {
       return;
     }
     ps.pos[i] += half * ps.vel[i];
-    ps.vel[i] += half * (ps.acc[i] + g);
+    ps.vel[i] += half * (fluid_acceleration(L, i, uniform) + g);
   });
 }
 
@@ -104,6 +106,7 @@ void corrector(Level<D>& L, double dt) {
   const double rho0 = prm.eos.rho0;
   const bool shifting = prm.shifting.on();
   const bool constrained = !L.buffer_shift_normal.empty();
+  const bool uniform = L.fluid_acc_uniform != Vec<D>{};
   exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     if (ps.kind[i] == Kind::wall) {
       const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
@@ -128,7 +131,7 @@ void corrector(Level<D>& L, double dt) {
     }
     const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
     ps.rho[i] = ps.rho0[i] * (2.0 - eps) / (2.0 + eps);
-    ps.vel[i] = ps.vel0[i] + dt * (ps.acc[i] + prm.gravity);
+    ps.vel[i] = ps.vel0[i] + dt * (fluid_acceleration(L, i, uniform) + prm.gravity);
     ps.pos[i] += (0.5 * dt) * ps.vel[i] + dr;
   });
 }

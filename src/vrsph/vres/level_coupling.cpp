@@ -175,7 +175,7 @@ void LevelCoupling<D>::after_forces(std::vector<Level<D>>& levels, bool capillar
     f += surface_net_force(levels, mass);
   else
     mass = fluid_mass(levels);
-  if (mass > 0.0) add_to_fluid(levels, f * (-1.0 / mass), false);
+  if (mass > 0.0) set_uniform_fluid_acceleration(levels, f * (-1.0 / mass));
 }
 
 template <int D>
@@ -218,7 +218,7 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
   if (interpolate_buffers(levels, links_, tally, donor_rule()) > 0) sort();
   if (opt_.conserve_momentum && fluid_changed(tally)) {
     const Vec<D> dp = fluid_momentum(levels, mass) - p_before;
-    if (mass > 0.0) add_to_fluid(levels, dp * (-1.0 / mass), true);
+    if (mass > 0.0) add_to_fluid_velocity(levels, dp * (-1.0 / mass));
   }
   return tally;
 }
@@ -240,7 +240,7 @@ Vec<D> LevelCoupling<D>::net_force(const std::vector<Level<D>>& levels, std::siz
 template <int D>
 void LevelCoupling<D>::remove_impulse(std::vector<Level<D>>& levels, const Vec<D>& impulse) const {
   const double mass = fluid_mass(levels);
-  if (mass > 0.0) add_to_fluid(levels, impulse * (-1.0 / mass), true);
+  if (mass > 0.0) add_to_fluid_velocity(levels, impulse * (-1.0 / mass));
 }
 
 template <int D>

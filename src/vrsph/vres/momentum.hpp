@@ -129,16 +129,23 @@ Vec<D> surface_net_force(const std::vector<Level<D>>& levels, double& mass) {
   return f;
 }
 
-// Adds a (or, when velocity is true, dv) to every fluid particle of every level.
+// Adds dv to the velocity of every fluid particle of every level.
 template <int D>
-void add_to_fluid(std::vector<Level<D>>& levels, const Vec<D>& a, bool velocity) {
+void add_to_fluid_velocity(std::vector<Level<D>>& levels, const Vec<D>& dv) {
   for (Level<D>& L : levels) {
-    Vec<D>* field = velocity ? L.ps.vel.data() : L.ps.acc.data();
+    Vec<D>* vel = L.ps.vel.data();
     const Kind* kind = L.ps.kind.data();
     exec::for_each(static_cast<std::int64_t>(L.ps.size()), [=](std::int64_t i) {
-      if (kind[i] == Kind::fluid) field[i] += a;
+      if (kind[i] == Kind::fluid) vel[i] += dv;
     });
   }
+}
+
+// Gives every fluid particle of every level the uniform acceleration a on top of what the last
+// force pass gave it (Level::fluid_acc_uniform, which the integrator adds).
+template <int D>
+void set_uniform_fluid_acceleration(std::vector<Level<D>>& levels, const Vec<D>& a) {
+  for (Level<D>& L : levels) L.fluid_acc_uniform = a;
 }
 
 }  // namespace vrsph
