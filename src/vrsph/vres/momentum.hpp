@@ -42,19 +42,17 @@ namespace vrsph {
 // a small drop's step.
 inline constexpr int kLanes = 4;
 
-// sum_i term(L, i) over the fluid particles i of all levels L in the lanes above, the lanes in
-// parallel, each in index order into a local sum (a shared array written by two threads at every
-// particle would bounce its cache line between them), then added in lane order.
+// sum_i term(L, i) over the fluid particles i of all levels L in the lanes above: one pass on one
+// thread, the lanes side by side (independent chains of additions), then added in lane order.
+// A few microseconds for a drop of 5,000 particles: the same lanes summed in parallel (a lane per
+// task) cost three times the samples on one thread (370 against 124 for the net capillary force,
+// docs/validation.md) and kept the second thread waiting on two.
 template <class T, int D, class Term>
 T fluid_lane_sum(const std::vector<Level<D>>& levels, Term&& term) {
   T lane[kLanes] = {};
-  exec::for_each(kLanes, [&](std::int64_t l) {
-    T sum{};
-    for (const Level<D>& L : levels)
-      for (std::size_t i = static_cast<std::size_t>(l); i < L.ps.size(); i += kLanes)
-        if (L.ps.kind[i] == Kind::fluid) sum += term(L, i);
-    lane[l] = sum;
-  });
+  for (const Level<D>& L : levels)
+    for (std::size_t i = 0; i < L.ps.size(); ++i)
+      if (L.ps.kind[i] == Kind::fluid) lane[i % kLanes] += term(L, i);
   T total{};
   for (const T& sum : lane) total += sum;
   return total;
@@ -106,27 +104,16 @@ Vec<D> coupling_net_force(const std::vector<Level<D>>& levels) {
 }
 
 // F_st: sum over fluid particles of m_i a_st,i (levels without surface tension give zero), in
-// lanes; mass gets sum_i m_i, the same bits as fluid_mass. One pass over the particles on one
-// thread, the lanes side by side (independent chains of additions): a few microseconds for a
-// drop of 5,000 particles, less than the lane sum in parallel.
+// lanes; mass gets sum_i m_i, the same bits as fluid_mass.
 template <int D>
 Vec<D> surface_net_force(const std::vector<Level<D>>& levels, double& mass) {
-  Vec<D> f_lane[kLanes] = {};
-  double m_lane[kLanes] = {};
-  for (const Level<D>& L : levels) {
-    const ParticleSet<D>& ps = L.ps;
-    const Vec<D>* a_st = L.sf.acc_st.size() == ps.size() ? L.sf.acc_st.data() : nullptr;
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      if (ps.kind[i] != Kind::fluid) continue;
-      const double m = ps.mass_of(i);
-      if (a_st != nullptr) f_lane[i % kLanes] += m * a_st[i];
-      m_lane[i % kLanes] += m;
-    }
-  }
-  Vec<D> f{};
-  mass = 0.0;
-  for (int l = 0; l < kLanes; ++l) f += f_lane[l], mass += m_lane[l];
-  return f;
+  const MassAnd<D> s = fluid_lane_sum<MassAnd<D>>(levels, [](const Level<D>& L, std::size_t i) {
+    const double m = L.ps.mass_of(i);
+    const bool held = L.sf.acc_st.size() == L.ps.size();
+    return MassAnd<D>{held ? m * L.sf.acc_st[i] : Vec<D>{}, m};
+  });
+  mass = s.m;
+  return s.v;
 }
 
 // Adds dv to the velocity of every fluid particle of every level.
