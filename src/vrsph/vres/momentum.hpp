@@ -42,17 +42,21 @@ namespace vrsph {
 // a small drop's step.
 inline constexpr int kLanes = 4;
 
-// sum_i term(L, i) over the fluid particles i of all levels L in the lanes above: one pass on one
-// thread, the lanes side by side (independent chains of additions), then added in lane order.
-// A few microseconds for a drop of 5,000 particles: the same lanes summed in parallel (a lane per
-// task) cost three times the samples on one thread (370 against 124 for the net capillary force,
+// sum_i term_i over the fluid particles i of all levels L in the lanes above, with term_i =
+// level_term(L)(i) (level_term forms what its level's terms share, once): one pass on one thread,
+// the lanes side by side (independent chains of additions), then added in lane order. A few
+// microseconds for a drop of 5,000 particles: the same lanes summed in parallel (a lane per task)
+// cost three times the samples on one thread (370 against 124 for the net capillary force,
 // docs/validation.md) and kept the second thread waiting on two.
-template <class T, int D, class Term>
-T fluid_lane_sum(const std::vector<Level<D>>& levels, Term&& term) {
+template <class T, int D, class LevelTerm>
+T fluid_lane_sum(const std::vector<Level<D>>& levels, LevelTerm&& level_term) {
   T lane[kLanes] = {};
-  for (const Level<D>& L : levels)
+  for (const Level<D>& L : levels) {
+    const auto term = level_term(L);
+    const Kind* kind = L.ps.kind.data();
     for (std::size_t i = 0; i < L.ps.size(); ++i)
-      if (L.ps.kind[i] == Kind::fluid) lane[i % kLanes] += term(L, i);
+      if (kind[i] == Kind::fluid) lane[i % kLanes] += term(i);
+  }
   T total{};
   for (const T& sum : lane) total += sum;
   return total;
@@ -70,8 +74,10 @@ struct MassAnd {
 // sum_i m_i, the same bits as fluid_mass.
 template <int D>
 Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
-  const MassAnd<D> s = fluid_lane_sum<MassAnd<D>>(levels, [](const Level<D>& L, std::size_t i) {
-    return MassAnd<D>{L.ps.mass_of(i) * L.ps.vel[i], L.ps.mass_of(i)};
+  const MassAnd<D> s = fluid_lane_sum<MassAnd<D>>(levels, [](const Level<D>& L) {
+    return [&ps = L.ps](std::size_t i) {
+      return MassAnd<D>{ps.mass_of(i) * ps.vel[i], ps.mass_of(i)};
+    };
   });
   mass = s.m;
   return s.v;
@@ -80,8 +86,9 @@ Vec<D> fluid_momentum(const std::vector<Level<D>>& levels, double& mass) {
 // Fluid mass sum_i m_i over all levels (fluid_momentum's mass without its momentum).
 template <int D>
 double fluid_mass(const std::vector<Level<D>>& levels) {
-  return fluid_lane_sum<double>(levels,
-                                [](const Level<D>& L, std::size_t i) { return L.ps.mass_of(i); });
+  return fluid_lane_sum<double>(levels, [](const Level<D>& L) {
+    return [&ps = L.ps](std::size_t i) { return ps.mass_of(i); };
+  });
 }
 
 // The mass of buffer particle i as its level's sums see it: m_i omega_i (LevelColumns::weight,
@@ -107,10 +114,12 @@ Vec<D> coupling_net_force(const std::vector<Level<D>>& levels) {
 // lanes; mass gets sum_i m_i, the same bits as fluid_mass.
 template <int D>
 Vec<D> surface_net_force(const std::vector<Level<D>>& levels, double& mass) {
-  const MassAnd<D> s = fluid_lane_sum<MassAnd<D>>(levels, [](const Level<D>& L, std::size_t i) {
-    const double m = L.ps.mass_of(i);
-    const bool held = L.sf.acc_st.size() == L.ps.size();
-    return MassAnd<D>{held ? m * L.sf.acc_st[i] : Vec<D>{}, m};
+  const MassAnd<D> s = fluid_lane_sum<MassAnd<D>>(levels, [](const Level<D>& L) {
+    const Vec<D>* a_st = L.sf.acc_st.size() == L.ps.size() ? L.sf.acc_st.data() : nullptr;
+    return [&ps = L.ps, a_st](std::size_t i) {
+      const double m = ps.mass_of(i);
+      return MassAnd<D>{a_st != nullptr ? m * a_st[i] : Vec<D>{}, m};
+    };
   });
   mass = s.m;
   return s.v;
