@@ -208,13 +208,19 @@ TEST(CliUnstable, TinySoundSpeedFailsTheDensityCheck) {
 // Fluid at four times the sound speed: the next dt falls below 0.05 h / c0 after the first step.
 // The diagnosis names the fastest fluid particle (the accelerations are gone after the step's last
 // sort, so a particle named by its acceleration would be a stranger).
+// The tiny case to 0.5 s with its fluid started at `velocity`, at sound speed c0.
+CmdResult run_moving_tiny(TempDir& dir, const fs::path& out, const std::string& velocity,
+                          const std::string& c0) {
+  dir.write("tiny.toml", kTiny);
+  return dir.run({"run", "tiny.toml", "--out", out.string(), "--quiet", "--threads", "1", "--set",
+                  "fluid_block.0.velocity=" + velocity, "--set", "eos.sound_speed=" + c0, "--set",
+                  "case.end_time=0.5"});
+}
+
 TEST(CliUnstable, FluidFasterThanSoundFailsTheDtCheck) {
   TempDir dir;
-  dir.write("tiny.toml", kTiny);
   const fs::path out = dir / "run";
-  const CmdResult r = dir.run({"run", "tiny.toml", "--out", out.string(), "--quiet", "--threads",
-                               "1", "--set", "fluid_block.0.velocity=[8, 0]", "--set",
-                               "eos.sound_speed=2", "--set", "case.end_time=0.5"});
+  const CmdResult r = run_moving_tiny(dir, out, "[8, 0]", "2");
   expect_unstable(r, out, "dt");
   const std::string l = r.err_lines().empty() ? "" : r.err_lines()[0];
   const std::smatch m = [&] {
@@ -228,12 +234,8 @@ TEST(CliUnstable, FluidFasterThanSoundFailsTheDtCheck) {
 
 TEST(CliUnstable, FluidLeavingTheDomainFailsTheDomainCheck) {
   TempDir dir;
-  dir.write("tiny.toml", kTiny);
   const fs::path out = dir / "run";
-  const CmdResult r = dir.run({"run", "tiny.toml", "--out", out.string(), "--quiet", "--threads",
-                               "1", "--set", "fluid_block.0.velocity=[0, 30]", "--set",
-                               "eos.sound_speed=300", "--set", "case.end_time=0.5"});
-  expect_unstable(r, out, "domain");
+  expect_unstable(run_moving_tiny(dir, out, "[0, 30]", "300"), out, "domain");
 }
 
 // ---------------------------------------------------------------------------------------------
