@@ -73,6 +73,30 @@ inline double max_of(std::int64_t n, int chunk, double floor, Body&& body) {
   return std::max(floor, m.v);
 }
 
+// Whether pred(i) holds for some i in [0, n): chunks of `chunk` indices, and once a thread has
+// found one the chunks still to start are skipped. The answer (not the i) is the same for any
+// thread count.
+template <class Pred>
+inline bool any_of(std::int64_t n, std::int64_t chunk, Pred&& pred) {
+  const std::int64_t chunks = (n + chunk - 1) / chunk;
+  int found = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    int seen;
+#pragma omp atomic read relaxed
+    seen = found;
+    if (seen != 0) continue;
+    const std::int64_t end = std::min(n, (c + 1) * chunk);
+    for (std::int64_t i = c * chunk; i < end; ++i) {
+      if (!pred(i)) continue;
+#pragma omp atomic write relaxed
+      found = 1;
+      break;
+    }
+  }
+  return found != 0;
+}
+
 // The lowest i in [0, n) with pred(i), or n when there is none: the same answer for any thread
 // count (diagnoses name the same particle).
 template <class Pred>

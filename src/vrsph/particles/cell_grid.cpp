@@ -155,12 +155,29 @@ std::uint32_t CellGrid<D>::key(std::int64_t cell, Kind k) const {
 }
 
 template <int D>
+bool CellGrid<D>::unmoved_since_sort(const ParticleSet<D>& ps,
+                                     const std::array<std::int64_t, 3>& lo,
+                                     const std::array<std::int64_t, 3>& n) const {
+  if (ps.size() == 0 || pcell_.size() != ps.size() || lo != lo_ || n != n_) return false;
+  return !exec::any_of(static_cast<std::int64_t>(ps.size()), 1024, [&](std::int64_t i) {
+    return !inside(ps.pos[i]) || cell_of(ps.pos[i]) != pcell_[i];
+  });
+}
+
+// A particle's key is its cell and its group (fluid and buffer particles share one; nobody changes
+// group between sorts), so where no particle left its cell and the table lies as before, the
+// stable sort would be the identity: it is skipped, and carry() has nothing to do. A drop at rest
+// moves a particle across a cell boundary only every few steps.
+template <int D>
 std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copies) {
   const std::size_t n = ps.size();
+  const auto lo_before = lo_, n_before = n_;
+  fit_to(ps);
   sorted_count_ = n;
+  unmoved_ = unmoved_since_sort(ps, lo_before, n_before);
+  if (unmoved_) return {};
   std::vector<std::uint64_t> lost;
   pcell_.resize(n);
-  fit_to(ps);
   exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
     pcell_[i] = inside(ps.pos[i]) ? key(cell_of(ps.pos[i]), ps.kind[i]) : KeySort::kDropped;
   });
@@ -212,7 +229,7 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copie
 template <int D>
 template <class T>
 void CellGrid<D>::carry(std::vector<T>& a) {
-  if (a.size() != sorted_count_) return;
+  if (unmoved_ || a.size() != sorted_count_) return;
   auto& spare = spare_for(a);
   spare.resize(perm_.size());
   permute_into(a, perm_, spare);

@@ -183,6 +183,10 @@ class CellGrid {
     return static_cast<std::int64_t>(a >= 0.0 ? a : std::floor(a));
   }
   void fit_to(const ParticleSet<D>& ps);
+  // Whether every particle of ps is still in the cell the last sort gave it, the same table laid
+  // over them (lo, n: the table before this sort's fit_to) and none created or deleted since.
+  bool unmoved_since_sort(const ParticleSet<D>& ps, const std::array<std::int64_t, 3>& lo,
+                          const std::array<std::int64_t, 3>& n) const;
 
   Vec<D> min_{}, max_{};
   Vec<D> origin_{};  // where cell 0 starts
@@ -198,6 +202,7 @@ class CellGrid {
   std::vector<std::uint32_t> pcell_;  // cell of each particle, then (during a sort) its key
   std::vector<std::uint32_t> perm_;
   std::size_t sorted_count_ = 0;  // particles before the last sort (what carry() accepts)
+  bool unmoved_ = false;          // the last sort found every particle in its cell: no permutation
   std::vector<std::uint32_t> dropped_;
   KeySort keysort_;
   // Gather targets (spare_for): of the sort and of carry(), for the vector and double arrays.
