@@ -334,5 +334,47 @@ TYPED_TEST(CellGridTest, ResortAfterMotionMatchesFreshGrid) {
   EXPECT_EQ(fresh.group_end(Group::fluid), grid.group_end(Group::fluid));
 }
 
+// A sort where no particle left its cell is skipped (the stable sort would be the identity) and
+// carry() then leaves arrays as they are; one particle moved into another cell makes the next sort
+// a real one again, whose order and cells are a fresh grid's.
+TYPED_TEST(CellGridTest, SortSkipsOnlyWhenNoParticleChangedCell) {
+  constexpr int D = TypeParam::value / 10, cps = TypeParam::value % 10;
+  Cloud<D> cl = cloud_for_test<D>(8);
+  CellGrid<D> grid(cl.lo, cl.hi, cl.support, cps);
+  grid.sort(cl.ps);
+  const auto cells = grid.particle_cells();
+  const std::vector<std::uint64_t> ids = cl.ps.id;
+  std::vector<double> side(cl.ps.size());
+  for (std::size_t i = 0; i < side.size(); ++i) side[i] = static_cast<double>(i);
+  const std::vector<double> side_before = side;
+  EXPECT_TRUE(grid.sort(cl.ps).empty());
+  EXPECT_TRUE(grid.last_sort_skipped());
+  grid.carry(side);
+  EXPECT_EQ(cl.ps.id, ids);
+  EXPECT_EQ(grid.particle_cells(), cells);
+  EXPECT_EQ(side, side_before);
+  // The first fluid particle whose move by one cell along x keeps it inside the domain.
+  std::size_t moved = cl.ps.size();
+  for (std::size_t i = 0; i < cl.ps.size() && moved == cl.ps.size(); ++i) {
+    Vec<D> x = cl.ps.pos[i];
+    x[0] += grid.cell_size();
+    if (cl.ps.kind[i] == Kind::fluid && grid.inside(x)) moved = i;
+  }
+  ASSERT_LT(moved, cl.ps.size());
+  cl.ps.pos[moved][0] += grid.cell_size();
+  const std::uint64_t moved_id = cl.ps.id[moved];
+  grid.sort(cl.ps);
+  EXPECT_FALSE(grid.last_sort_skipped());
+  grid.carry(side);
+  ParticleSet<D> copy = cl.ps;
+  CellGrid<D> fresh(cl.lo, cl.hi, cl.support, cps);
+  fresh.sort(copy);
+  EXPECT_EQ(copy.id, cl.ps.id);
+  EXPECT_EQ(fresh.particle_cells(), grid.particle_cells());
+  EXPECT_NE(grid.particle_cells(), cells);        // the moved particle has its new cell
+  for (std::size_t i = 0; i < cl.ps.size(); ++i)  // the side array followed its particles
+    EXPECT_EQ(ids[static_cast<std::size_t>(side[i])], cl.ps.id[i]) << "moved id " << moved_id;
+}
+
 }  // namespace
 }  // namespace vrsph

@@ -140,6 +140,8 @@ class CellGrid {
       for (int dy = -reach_; dy <= reach_; ++dy) fn(c + dy * stride_[1] + dz * stride_[D - 1]);
   }
 
+  // Whether the last sort found every particle in its cell and so left the arrays as they were.
+  bool last_sort_skipped() const { return unmoved_; }
   // Cell of each particle after the last sort (same order as the particle arrays).
   const std::vector<std::uint32_t>& particle_cells() const { return pcell_; }
   std::int64_t cell_count() const { return ncell_total_; }
