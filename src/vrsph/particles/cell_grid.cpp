@@ -155,27 +155,32 @@ std::uint32_t CellGrid<D>::key(std::int64_t cell, Kind k) const {
 }
 
 template <int D>
-bool CellGrid<D>::unmoved_since_sort(const ParticleSet<D>& ps,
-                                     const std::array<std::int64_t, 3>& lo,
-                                     const std::array<std::int64_t, 3>& n) const {
-  if (ps.size() == 0 || pcell_.size() != ps.size() || lo != lo_ || n != n_) return false;
+bool CellGrid<D>::unmoved_since_sort(const ParticleSet<D>& ps) const {
+  if (ps.size() == 0 || pcell_.size() != ps.size()) return false;
   return !exec::any_of(static_cast<std::int64_t>(ps.size()), 1024, [&](std::int64_t i) {
-    return !inside(ps.pos[i]) || cell_of(ps.pos[i]) != pcell_[i];
+    const Vec<D>& x = ps.pos[i];
+    if (!inside(x)) return true;
+    std::int64_t c = 0;
+    for (int k = 0; k < D; ++k) {
+      const std::int64_t ck = cell_coord(x, k) - lo_[k];
+      if (ck < 0 || ck >= n_[k]) return true;  // off the table: not the cell it had
+      c += ck * stride_[k];
+    }
+    return c != static_cast<std::int64_t>(pcell_[i]);
   });
 }
 
 // A particle's key is its cell and its group (fluid and buffer particles share one; nobody changes
-// group between sorts), so where no particle left its cell and the table lies as before, the
-// stable sort would be the identity: it is skipped, and carry() has nothing to do. A drop at rest
-// moves a particle across a cell boundary only every few steps.
+// group between sorts), so where no particle left its cell the table fit_to would lay is the same
+// and the stable sort would be the identity: both are skipped, and carry() has nothing to do. A
+// drop at rest moves a particle across a cell boundary only every few steps.
 template <int D>
 std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copies) {
   const std::size_t n = ps.size();
-  const auto lo_before = lo_, n_before = n_;
-  fit_to(ps);
   sorted_count_ = n;
-  unmoved_ = unmoved_since_sort(ps, lo_before, n_before);
+  unmoved_ = unmoved_since_sort(ps);
   if (unmoved_) return {};
+  fit_to(ps);
   std::vector<std::uint64_t> lost;
   pcell_.resize(n);
   exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {

@@ -185,10 +185,9 @@ class CellGrid {
     return static_cast<std::int64_t>(a >= 0.0 ? a : std::floor(a));
   }
   void fit_to(const ParticleSet<D>& ps);
-  // Whether every particle of ps is still in the cell the last sort gave it, the same table laid
-  // over them (lo, n: the table before this sort's fit_to) and none created or deleted since.
-  bool unmoved_since_sort(const ParticleSet<D>& ps, const std::array<std::int64_t, 3>& lo,
-                          const std::array<std::int64_t, 3>& n) const;
+  // Whether every particle of ps is still in the cell the last sort gave it (none created or
+  // deleted since). Then the occupied cells, and so the table fit_to would lay, are the same too.
+  bool unmoved_since_sort(const ParticleSet<D>& ps) const;
 
   Vec<D> min_{}, max_{};
   Vec<D> origin_{};  // where cell 0 starts
