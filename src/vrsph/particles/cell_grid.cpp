@@ -157,7 +157,12 @@ std::uint32_t CellGrid<D>::key(std::int64_t cell, Kind k) const {
 template <int D>
 bool CellGrid<D>::unmoved_since_sort(const ParticleSet<D>& ps) const {
   if (ps.size() == 0 || pcell_.size() != ps.size()) return false;
+  // The wall group's runs start where the fluid group's end: a particle in the other group's
+  // part of the table (particles created and deleted in equal numbers since the sort shift the
+  // indices) is not where the table puts it, even where its cell is.
+  const std::int64_t walls_from = starts_[static_cast<std::size_t>(ncell_total_)];
   return !exec::any_of(static_cast<std::int64_t>(ps.size()), 1024, [&](std::int64_t i) {
+    if ((ps.kind[i] == Kind::wall) != (i >= walls_from)) return true;
     const Vec<D>& x = ps.pos[i];
     if (!inside(x)) return true;
     std::int64_t c = 0;
