@@ -10,7 +10,10 @@ namespace {
 //   a = sum_j [V_j W, V_j h grad W] (outer) [1, (x_j - x)/h],  grad W = F(r) (x - x_j);
 //   rhs[q] = sum_j f_j^q [V_j W, V_j h grad W] for f^0 = rho, f^(1+k) = vel_k;
 //   div_r = -sum_j V_j F(r) r^2;  shepard_buffer = sum over the donor's buffer particles of V_j W.
-template <int D>
+// kFull false: only what the Shepard average reads (a[0][0], the first entry of each rhs, div_r
+// and shepard_buffer), each formed by the same operations in the same order as with kFull, so
+// the same bits.
+template <int D, bool kFull>
 struct DonorSums {
   static constexpr int N = D + 1;
   typename SmallLu<N>::Matrix a{};
@@ -19,12 +22,12 @@ struct DonorSums {
   double shepard_buffer = 0.0;
 
   // Adds a piece of donors (within reach of x, in index order). First what each donor gives on
-  // its own (r, r^2, V W, V F: independent, so the compiler vectorises it), then the sums in
-  // donor order with the accumulators in registers. Summed donor by donor with the kernel inside
-  // the loop, the accumulators lived in memory (the compiler could not rule out that they alias
-  // the donors' arrays) and each sqrt's latency sat in the chain (the interpolation: 14.7% of a
-  // one-thread VR drop's samples, 12.0% this way). The same operations in the same order: the
-  // same bits.
+  // its own (r, r^2, V W, V F: independent, so the compiler vectorises it), then the sums in donor
+  // order with the accumulators in registers. Summed donor by donor with the kernel inside the
+  // loop, the accumulators lived in memory (the compiler could not rule out that they alias the
+  // donors' arrays) and each sqrt's latency sat in the chain (the interpolation: 14.7% of a
+  // one-thread VR drop's samples, 12.0% this way). The same operations in the same order: the same
+  // bits.
   void add_piece(const Vec<D>& x, const std::uint32_t* kept, std::uint32_t n,
                  const DonorState<D>& dn) {
     const WendlandC2<D>& kernel = dn.kernel;
@@ -54,8 +57,8 @@ struct DonorSums {
       }
       const double rho = dn.rho[j];
       const Vec<D> vel = dn.vel[j];
-      for (int i = 0; i < N; ++i) {
-        for (int c = 0; c < N; ++c) t.a[i][c] += row[i] * col[c];
+      for (int i = 0; i < (kFull ? N : 1); ++i) {
+        for (int c = 0; c < (kFull ? N : 1); ++c) t.a[i][c] += row[i] * col[c];
         t.rhs[0][i] += row[i] * rho;
         for (int q = 0; q < D; ++q) t.rhs[q + 1][i] += row[i] * vel[q];
       }
@@ -64,6 +67,31 @@ struct DonorSums {
     *this = t;
   }
 };
+
+// The sums over the fluid donors in reach of x (c: its stencil cell), and the fields of `out` they
+// give: the Shepard sum, div r and the buffer's share of the fill.
+template <int D, bool kFull>
+DonorSums<D, kFull> donor_sums(const Vec<D>& x, std::int64_t c, const DonorState<D>& dn,
+                               InterpolatedState<D>& out) {
+  DonorSums<D, kFull> s;
+  const Vec<D>* pos = dn.pos;
+  auto at = [pos](std::uint32_t j) { return pos[j]; };
+  for_each_within_piece(
+      dn.grid, c, Group::fluid, x, dn.kernel.support2, at,
+      [&](const std::uint32_t* kept, std::uint32_t n) { s.add_piece(x, kept, n, dn); });
+  out.shepard = s.a[0][0];
+  out.div_r = s.div_r;
+  out.shepard_buffer = s.shepard_buffer;
+  return s;
+}
+
+// The Shepard average: the first entry of each right-hand side over the Shepard sum.
+template <int D, bool kFull>
+void shepard_values(const DonorSums<D, kFull>& s, InterpolatedState<D>& out) {
+  const double inv_shep = 1.0 / out.shepard;
+  out.rho = s.rhs[0][0] * inv_shep;
+  for (int k = 0; k < D; ++k) out.vel[k] = s.rhs[k + 1][0] * inv_shep;
+}
 
 }  // namespace
 
@@ -75,21 +103,30 @@ InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>
   const ParticleSet<D>& donors = dn.ps;
   const WendlandC2<D>& kernel = dn.kernel;
   if (donors.size() == 0 || !dn.grid.stencil_cell(x, c)) return out;
-  DonorSums<D> s;
-  const Vec<D>* pos = dn.pos;
-  auto at = [pos](std::uint32_t j) { return pos[j]; };
-  for_each_within_piece(
-      dn.grid, c, Group::fluid, x, kernel.support2, at,
-      [&](const std::uint32_t* kept, std::uint32_t n) { s.add_piece(x, kept, n, dn); });
-  out.shepard = s.a[0][0];
-  out.div_r = s.div_r;
-  out.shepard_buffer = s.shepard_buffer;
-  auto now = [&](std::uint32_t j) { return donors.pos[j]; };
-  for_each_within(dn.grid, c, Group::wall, x, kernel.support2, now,
-                  [&](std::uint32_t j, const Vec<D>&, double r2) {
-                    const double v = donors.mass_of(j) / donors.rho[j];
-                    out.shepard_walls += v * kernel.w(std::sqrt(r2));
-                  });
+  auto walls = [&] {
+    auto now = [&](std::uint32_t j) { return donors.pos[j]; };
+    for_each_within(dn.grid, c, Group::wall, x, kernel.support2, now,
+                    [&](std::uint32_t j, const Vec<D>&, double r2) {
+                      const double v = donors.mass_of(j) / donors.rho[j];
+                      out.shepard_walls += v * kernel.w(std::sqrt(r2));
+                    });
+  };
+  // Above a fill of 1 (the fluid's inside) nearly every point takes the Shepard average, so its
+  // sums come first and the first-order system is summed only where the fill reaches
+  // shepard_fill (cond stays 0 where it is not formed). The shipped VR drop (2: everywhere)
+  // spends half the interpolation's time on sums that the old order formed and never read.
+  if (shepard_fill > 1.0) {
+    const DonorSums<D, false> s = donor_sums<D, false>(x, c, dn, out);
+    walls();
+    if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
+    if (donor_fill(out) < shepard_fill) {
+      shepard_values(s, out);
+      return out;
+    }
+    out.shepard_walls = 0.0;  // summed again below, in the order of the full path
+  }
+  const DonorSums<D, true> s = donor_sums<D, true>(x, c, dn, out);
+  walls();
   if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
   const SmallLu<D + 1> lu(s.a);
   out.cond = lu.cond_inf();
@@ -99,10 +136,7 @@ InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>
     out.corrected = std::isfinite(out.rho) && std::isfinite(norm2(out.vel));
     if (out.corrected) return out;
   }
-  // Shepard: the first component of each right-hand side over the Shepard sum.
-  const double inv_shep = 1.0 / out.shepard;
-  out.rho = s.rhs[0][0] * inv_shep;
-  for (int k = 0; k < D; ++k) out.vel[k] = s.rhs[k + 1][0] * inv_shep;
+  shepard_values(s, out);
   return out;
 }
 
