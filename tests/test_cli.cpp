@@ -205,9 +205,6 @@ TEST(CliUnstable, TinySoundSpeedFailsTheDensityCheck) {
   EXPECT_TRUE(fs::exists(out / snapshot(0, "csv")));
 }
 
-// Fluid at four times the sound speed: the next dt falls below 0.05 h / c0 after the first step.
-// The diagnosis names the fastest fluid particle (the accelerations are gone after the step's last
-// sort, so a particle named by its acceleration would be a stranger).
 // The tiny case to 0.5 s with its fluid started at `velocity`, at sound speed c0.
 CmdResult run_moving_tiny(TempDir& dir, const fs::path& out, const std::string& velocity,
                           const std::string& c0) {
@@ -217,6 +214,9 @@ CmdResult run_moving_tiny(TempDir& dir, const fs::path& out, const std::string& 
                   "case.end_time=0.5"});
 }
 
+// Fluid at four times the sound speed: the next dt falls below 0.05 h / c0 after the first step.
+// The diagnosis names the fastest fluid particle (the accelerations are gone after the step's last
+// sort, so a particle named by its acceleration would be a stranger).
 TEST(CliUnstable, FluidFasterThanSoundFailsTheDtCheck) {
   TempDir dir;
   const fs::path out = dir / "run";

@@ -103,30 +103,26 @@ InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>
   const ParticleSet<D>& donors = dn.ps;
   const WendlandC2<D>& kernel = dn.kernel;
   if (donors.size() == 0 || !dn.grid.stencil_cell(x, c)) return out;
-  auto walls = [&] {
-    auto now = [&](std::uint32_t j) { return donors.pos[j]; };
-    for_each_within(dn.grid, c, Group::wall, x, kernel.support2, now,
-                    [&](std::uint32_t j, const Vec<D>&, double r2) {
-                      const double v = donors.mass_of(j) / donors.rho[j];
-                      out.shepard_walls += v * kernel.w(std::sqrt(r2));
-                    });
-  };
+  // The walls' share of the fill, independent of the fluid sums below.
+  auto now = [&](std::uint32_t j) { return donors.pos[j]; };
+  for_each_within(dn.grid, c, Group::wall, x, kernel.support2, now,
+                  [&](std::uint32_t j, const Vec<D>&, double r2) {
+                    const double v = donors.mass_of(j) / donors.rho[j];
+                    out.shepard_walls += v * kernel.w(std::sqrt(r2));
+                  });
   // Above a fill of 1 (the fluid's inside) nearly every point takes the Shepard average, so its
   // sums come first and the first-order system is summed only where the fill reaches
   // shepard_fill (cond stays 0 where it is not formed). The shipped VR drop (2: everywhere)
   // spends half the interpolation's time on sums that the old order formed and never read.
   if (shepard_fill > 1.0) {
     const DonorSums<D, false> s = donor_sums<D, false>(x, c, dn, out);
-    walls();
     if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
     if (donor_fill(out) < shepard_fill) {
       shepard_values(s, out);
       return out;
     }
-    out.shepard_walls = 0.0;  // summed again below, in the order of the full path
   }
   const DonorSums<D, true> s = donor_sums<D, true>(x, c, dn, out);
-  walls();
   if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
   const SmallLu<D + 1> lu(s.a);
   out.cond = lu.cond_inf();

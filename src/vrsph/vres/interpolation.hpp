@@ -57,8 +57,9 @@ struct InterpolatedState {
   double shepard_walls = 0.0;  // sum_j V_j W(x - x_j) over the donor level's wall particles
   double shepard_buffer = 0.0;  // the same over the donor level's buffer particles
   bool corrected = false;  // true: first-order corrected; false: Shepard fallback (or no support)
-  double cond =
-      0.0;  // dimensionless cond_inf(A) (infinity: singular; 0: no support, or not formed)
+  // Dimensionless cond_inf(A): infinity where singular; 0 where there is no support, or where
+  // the Shepard average was taken without forming A (shepard_fill above 1).
+  double cond = 0.0;
 };
 
 inline constexpr double kVresShepardMin = 0.05;  // below: no fluid at the point
