@@ -166,6 +166,7 @@ void check_whole_pass_matches(Precision precision) {
   SurfaceFields<D> in;
   in.resize(c.ps.size());
   in.grad_w.assign(c.ps.size(), -7.0);
+  in.sums_grad_w = true;
   const Pass1Out<D> whole = in.pass1_out(true);
   ASSERT_EQ(whole.terms, (kPass1Terms<D, true>));
   compute_forces_packed<D>(c.prm, c.ps, c.grid, ws, nullptr, false, &whole);

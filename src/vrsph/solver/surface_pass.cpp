@@ -32,6 +32,7 @@ void sums_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const CellG
   const double w0 = prm.kernel.w(0.0);
   const bool grad_w = prm.sigma > 0.0;  // read by pass 2 only
   sf.grad_w.resize(grad_w ? ps.size() : 0);
+  sf.sums_grad_w = grad_w;
   sf.cross_hit.assign(sf.cross.empty() ? 0 : ps.size(), 0);
   const Pass1Out<D> out = sf.pass1_out(true);
   // The fields of particle i from its pass-1 sums; w_self = W(0) of its kernel.
@@ -123,7 +124,7 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
   using S = SurfaceColumns<D, 2, T>;
   using Scratch = NormalsScratch<StencilSpans<D>>;
   const S src(cols, {volume_column<T>(cols), lambda_col});
-  if (!sf.grad_w.empty()) sf.lambda_ranges.build(grid, lambda_col);
+  if (sf.sums_grad_w) sf.lambda_ranges.build(grid, lambda_col);
   auto body = [&](std::int64_t ii, Scratch& sc) {
     const auto i = static_cast<std::size_t>(ii);
     sf.normal[i] = Vec<D>{};
@@ -134,7 +135,7 @@ void normals_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const Ce
     const std::int64_t cell = grid.particle_cells()[i];
     const bool across = !sf.cross_hit.empty() && sf.cross_hit[i] != 0;
     const double h_wide = sf.h_wide.empty() ? 0.0 : sf.h_wide[i];
-    if (difference && !sf.grad_w.empty() && !across) {  // the bound knows this level only
+    if (difference && sf.sums_grad_w && !across) {  // the bound knows this level only
       lambda_range<D>(grid, cell, sf.lambda_ranges, sc);
       const double limit = prm.surface_tension.normal_epsilon * lambda_i / prm.h;
       if (normal_surely_zero<D, T>(sc.lo, sc.hi, lambda_ref, sf.l_corr[i], sf.grad_w[i], limit))

@@ -27,8 +27,10 @@ struct SurfaceFields {
   std::vector<double> div_r;    // -sum_j V_j r_ij . grad_i W_ij
   std::vector<double> shepard;  // sum_j V_j W_ij, self included
   // G_i = sum_j V_j |grad_i W_ij|, which bounds pass 2's sum; pass 1 sums it only with surface
-  // tension on, and leaves it empty otherwise.
+  // tension on (sums_grad_w), and leaves it empty otherwise. A level without particles has it
+  // empty either way, so the flag, not the array's size, says whether G is summed.
   std::vector<double> grad_w;
+  bool sums_grad_w = false;
   std::vector<Vec<D>> normal;     // unit outward normal, or 0
   std::vector<double> curvature;  // kappa_i
   std::vector<Vec<D>> acc_st;     // surface-tension acceleration
@@ -77,8 +79,8 @@ struct SurfaceFields {
   // sums alone; G only where it is summed (grad_w sized).
   Pass1Out<D> pass1_out(bool whole) {
     Pass1Out<D> o{grad_c.data(), div_r.data(),   lambda.data(),
-                  l_corr.data(), shepard.data(), grad_w.empty() ? nullptr : grad_w.data()};
-    if (whole) o.terms = kPass1Terms<D, false> + (grad_w.empty() ? 0 : 1);
+                  l_corr.data(), shepard.data(), sums_grad_w ? grad_w.data() : nullptr};
+    if (whole) o.terms = kPass1Terms<D, false> + (sums_grad_w ? 1 : 0);
     return o;
   }
   // Reorders the held arrays after a sort of the level (CellGrid::carry).
