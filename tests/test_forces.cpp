@@ -130,7 +130,7 @@ double fourtakas_over_molteni(double c0_factor) {
   c.prm.density_diffusion.two_delta_h_c0 = 2.0 * 0.1 * c.prm.h * c0;
   c.prm.gravity[vert] = -g;
   c.prm.up[vert] = 1.0;
-  c.prm.density_diffusion.rho0_g_over_b = kRho0 * g / c.prm.eos.b;
+  c.prm.density_diffusion.set_hydrostatic(kRho0, kRho0 * g / c.prm.eos.b);
   for (std::size_t i = 0; i < c.ps.size(); ++i) {
     c.ps.rho[i] = c.prm.eos.density(kRho0 * g * (top - c.ps.pos[i][vert]));
   }
@@ -164,13 +164,33 @@ TYPED_TEST(ForcesTest, FourtakasRemovesHydrostaticPart) {
   EXPECT_NEAR(r40 / r20, 0.25, 0.05);  // second-order residual
 }
 
+// rho^H(z) = rho0 [(1 + rho0 g z / B)^(1/gamma) - 1] by the folded series (physics/
+// density_diffusion.hpp) against expm1 and log1p: in double to 1e-10 of the result up to the
+// set-up's bound on |x| = rho0 g |z| / B, in float (third order) to a few float ulp there and at
+// practical |x|.
+TEST(FourtakasSeries, MatchesThePowerLaw) {
+  const TaitEos eos(1000.0, 7.0, 20.0);
+  const DiffusionLevel d = diffusion_level(DiffusionParams{}, eos, 9.81, 0.01);
+  const HydrostaticSeries<double> in_double(d.hydrostatic);
+  const HydrostaticSeries<float> in_float(d.hydrostatic);
+  for (const double x : {-1e-2, -3e-3, -1e-4, -1e-6, 1e-6, 1e-4, 3e-3, 1e-2}) {
+    const double z = x / d.rho0_g_over_b;
+    const double exact = eos.rho0 * std::expm1(d.inv_gamma * std::log1p(x));
+    EXPECT_NEAR(in_double(z) / exact, 1.0, 1e-10) << "x = " << x;
+    const double in_f = in_float(static_cast<float>(z));
+    EXPECT_NEAR(in_f / exact, 1.0, std::abs(x) > 1e-3 ? 1e-6 : 4e-7) << "x = " << x;
+  }
+  EXPECT_EQ(in_double(0.0), 0.0);
+  EXPECT_EQ(in_float(0.0f), 0.0f);
+}
+
 // Diffusion skips wall neighbours: with v = 0, the fluid density rates do not depend on the wall
 // densities (the pressure of the walls does change the accelerations).
 TYPED_TEST(ForcesTest, DiffusionIgnoresWallDensity) {
   constexpr int D = TypeParam::value;
   for (DiffusionModel dm : {DiffusionModel::molteni, DiffusionModel::fourtakas}) {
     Cloud<D> c = make_cloud<D>(side<D>(), ViscosityModel::artificial, dm, {0.0, 0.01, 0.0, 3}, 51);
-    c.prm.density_diffusion.rho0_g_over_b = kRho0 * 9.81 / c.prm.eos.b;
+    c.prm.density_diffusion.set_hydrostatic(kRho0, kRho0 * 9.81 / c.prm.eos.b);
     c.prm.up[vertical_axis<D>()] = 1.0;
     compute_forces(c.prm, c.ps, c.grid);
     const auto drho = c.ps.drho;

@@ -22,9 +22,8 @@ TEST(VresEmptyLevel, DropOutsideTheBoxStepsOn) {
     for (const char* precision : {"double", "mixed"}) {
       CaseSpec spec = load_case(
           "droplet_vr_2d.toml",
-          {"resolution.dp=2e-4", "fluid_block.0.center=[-0.004,0.0]",
-           "domain.min=[-0.008,-0.004]", "case.end_time=0.0001",
-           std::string("numerics.precision=\"") + precision + "\"",
+          {"resolution.dp=2e-4", "fluid_block.0.center=[-0.004,0.0]", "domain.min=[-0.008,-0.004]",
+           "case.end_time=0.0001", std::string("numerics.precision=\"") + precision + "\"",
            std::string("numerics.local_time_stepping=") + (local ? "true" : "false")});
       Simulation<2> sim(spec);
       ASSERT_EQ(sim.level_count(), 2u);

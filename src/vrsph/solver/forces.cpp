@@ -59,8 +59,7 @@ inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
   const T nu = static_cast<T>(prm.viscosity.nu);
   const T alpha_c0_h = static_cast<T>(prm.viscosity.alpha_c0_h);
   const T two_delta_h_c0 = static_cast<T>(prm.density_diffusion.two_delta_h_c0);
-  const T rho0_g_over_b = static_cast<T>(prm.density_diffusion.rho0_g_over_b);
-  const T inv_gamma = static_cast<T>(prm.density_diffusion.inv_gamma);
+  const HydrostaticSeries<T> rho_h_of(prm.density_diffusion.hydrostatic);
   const T up0 = static_cast<T>(prm.up[0]), up1 = static_cast<T>(prm.up[1]);
   const T up2 = static_cast<T>(prm.up[D - 1]);
   auto pair = [=](const PairGeometryT<T>& g, const Neighbour<kStateCols<D, T>, T>& nb) {
@@ -92,7 +91,7 @@ inline auto fluid_pair(const SolverParams<D>& prm, const Self<T>& me) {
       // Selected to 0 outside the support: the series of a dummy's z (1e15 m) overflows float.
       const T z = g.rx * up0 + g.ry * up1 + (D == 3 ? g.rz * up2 : T(0));
       const T z_ij = g.in != T(0) ? z : T(0);
-      const T rho_h = hydrostatic_density_difference(rho0, rho0_g_over_b, inv_gamma, z_ij);
+      const T rho_h = rho_h_of(z_ij);
       dr += fourtakas_diffusion_pair(two_delta_h_c0, vol_j, rho_i_minus_j, rho_h, rij_dot_gradw,
                                      inv_r2eta);
     }
