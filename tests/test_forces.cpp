@@ -130,7 +130,7 @@ double fourtakas_over_molteni(double c0_factor) {
   c.prm.density_diffusion.two_delta_h_c0 = 2.0 * 0.1 * c.prm.h * c0;
   c.prm.gravity[vert] = -g;
   c.prm.up[vert] = 1.0;
-  c.prm.density_diffusion.set_hydrostatic(kRho0, kRho0 * g / c.prm.eos.b);
+  c.prm.density_diffusion.set_hydrostatic(c.prm.eos, g);
   for (std::size_t i = 0; i < c.ps.size(); ++i) {
     c.ps.rho[i] = c.prm.eos.density(kRho0 * g * (top - c.ps.pos[i][vert]));
   }
@@ -190,7 +190,7 @@ TYPED_TEST(ForcesTest, DiffusionIgnoresWallDensity) {
   constexpr int D = TypeParam::value;
   for (DiffusionModel dm : {DiffusionModel::molteni, DiffusionModel::fourtakas}) {
     Cloud<D> c = make_cloud<D>(side<D>(), ViscosityModel::artificial, dm, {0.0, 0.01, 0.0, 3}, 51);
-    c.prm.density_diffusion.set_hydrostatic(kRho0, kRho0 * 9.81 / c.prm.eos.b);
+    c.prm.density_diffusion.set_hydrostatic(c.prm.eos, 9.81);
     c.prm.up[vertical_axis<D>()] = 1.0;
     compute_forces(c.prm, c.ps, c.grid);
     const auto drho = c.ps.drho;

@@ -52,7 +52,7 @@ TYPED_TEST(MixedForces, AgreesWithDoubleToFloatAccuracy) {
          {DiffusionModel::none, DiffusionModel::molteni, DiffusionModel::fourtakas}) {
       Cloud<D> c = make_cloud<D>(n, vm, dm, {0.5, 0.01, 0.05, 3}, 41);
       c.prm.up[vertical_axis<D>()] = 1.0;
-      c.prm.density_diffusion.set_hydrostatic(kRho0, kRho0 * 9.81 / c.prm.eos.b);
+      c.prm.density_diffusion.set_hydrostatic(c.prm.eos, 9.81);
       const Result d = forces(c, Precision::double_precision);
       const Result m = forces(c, Precision::mixed);
       const double ea = max_rel_diff(d.acc, m.acc), er = max_rel_diff(d.drho, m.drho);

@@ -68,8 +68,8 @@ struct DiffusionLevel : DiffusionParams {
   // k_n of rho^H(z) = sum_n k_n z^n (HydrostaticSeries above), from rho0 and the two above.
   std::array<double, 5> hydrostatic{};
 
-  // Sets rho0 g / B and the k_n that follow from it (inv_gamma as set).
-  void set_hydrostatic(double rho0, double rho0_g_over_b_);
+  // Sets the three Fourtakas numbers above from the EOS and |gravity| g (m/s^2), together.
+  void set_hydrostatic(const TaitEos& eos, double g);
 };
 
 // The polynomial's coefficients k_n = rho0 c_n (rho0 g / B)^n for the level's numbers.
@@ -84,9 +84,10 @@ inline std::array<double, 5> hydrostatic_coefficients(double rho0, double rho0_g
   return k;
 }
 
-inline void DiffusionLevel::set_hydrostatic(double rho0, double rho0_g_over_b_) {
-  rho0_g_over_b = rho0_g_over_b_;
-  hydrostatic = hydrostatic_coefficients(rho0, rho0_g_over_b, inv_gamma);
+inline void DiffusionLevel::set_hydrostatic(const TaitEos& eos, double g) {
+  rho0_g_over_b = eos.rho0 * g / eos.b;
+  inv_gamma = 1.0 / eos.gamma;
+  hydrostatic = hydrostatic_coefficients(eos.rho0, rho0_g_over_b, inv_gamma);
 }
 
 // g: |gravity| (m/s^2); h: smoothing length (m).
@@ -94,8 +95,7 @@ inline DiffusionLevel diffusion_level(const DiffusionParams& p, const TaitEos& e
                                       double h) {
   DiffusionLevel d{p};
   d.two_delta_h_c0 = 2.0 * p.delta * h * eos.c0;
-  d.inv_gamma = 1.0 / eos.gamma;
-  d.set_hydrostatic(eos.rho0, eos.rho0 * g / eos.b);
+  d.set_hydrostatic(eos, g);
   return d;
 }
 
