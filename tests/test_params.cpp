@@ -29,7 +29,9 @@ TEST(LevelParams, ModelStructsCopiedWholeWithDerivedNumbers) {
   EXPECT_EQ(static_cast<const DiffusionParams&>(prm.density_diffusion), n.density_diffusion);
   EXPECT_DOUBLE_EQ(prm.density_diffusion.two_delta_h_c0, 2.0 * 0.2 * h * c0);
   EXPECT_DOUBLE_EQ(prm.density_diffusion.rho0_g_over_b, spec.fluid.density * 9.81 / prm.eos.b);
-  EXPECT_DOUBLE_EQ(prm.density_diffusion.inv_gamma, 1.0 / spec.eos.gamma);
+  // k_1 = rho0 (1 / gamma) (rho0 g / B): the EOS's gamma reaches the folded Fourtakas series.
+  EXPECT_DOUBLE_EQ(prm.density_diffusion.hydrostatic[0],
+                   spec.fluid.density / spec.eos.gamma * prm.density_diffusion.rho0_g_over_b);
 
   EXPECT_EQ(static_cast<const ShiftingParams&>(prm.shifting), n.shifting);
   EXPECT_EQ(prm.shifting.model, ShiftingModel::skillen);

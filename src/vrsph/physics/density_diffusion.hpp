@@ -63,12 +63,11 @@ struct HydrostaticSeries {
 // The model on one level, with the numbers the force pass reads.
 struct DiffusionLevel : DiffusionParams {
   double two_delta_h_c0 = 0.0;   // 2 delta h c0 (m^2/s)
-  double rho0_g_over_b = 0.0;    // rho0 |g| / B (1/m): Fourtakas
-  double inv_gamma = 1.0 / 7.0;  // 1 / gamma of the EOS (dimensionless): Fourtakas
-  // k_n of rho^H(z) = sum_n k_n z^n (HydrostaticSeries above), from rho0 and the two above.
+  double rho0_g_over_b = 0.0;    // rho0 |g| / B (1/m): Fourtakas (the set-up's bound on |x|)
+  // k_n of rho^H(z) = sum_n k_n z^n (HydrostaticSeries above), from rho0, rho0 g / B and 1/gamma.
   std::array<double, 5> hydrostatic{};
 
-  // Sets the three Fourtakas numbers above from the EOS and |gravity| g (m/s^2), together.
+  // Sets the two Fourtakas numbers above from the EOS and |gravity| g (m/s^2), together.
   void set_hydrostatic(const TaitEos& eos, double g);
 };
 
@@ -86,8 +85,7 @@ inline std::array<double, 5> hydrostatic_coefficients(double rho0, double rho0_g
 
 inline void DiffusionLevel::set_hydrostatic(const TaitEos& eos, double g) {
   rho0_g_over_b = eos.rho0 * g / eos.b;
-  inv_gamma = 1.0 / eos.gamma;
-  hydrostatic = hydrostatic_coefficients(eos.rho0, rho0_g_over_b, inv_gamma);
+  hydrostatic = hydrostatic_coefficients(eos.rho0, rho0_g_over_b, 1.0 / eos.gamma);
 }
 
 // g: |gravity| (m/s^2); h: smoothing length (m).
