@@ -62,8 +62,8 @@ struct HydrostaticSeries {
 
 // The model on one level, with the numbers the force pass reads.
 struct DiffusionLevel : DiffusionParams {
-  double two_delta_h_c0 = 0.0;   // 2 delta h c0 (m^2/s)
-  double rho0_g_over_b = 0.0;    // rho0 |g| / B (1/m): Fourtakas (the set-up's bound on |x|)
+  double two_delta_h_c0 = 0.0;  // 2 delta h c0 (m^2/s)
+  double rho0_g_over_b = 0.0;   // rho0 |g| / B (1/m): Fourtakas (the set-up's bound on |x|)
   // k_n of rho^H(z) = sum_n k_n z^n (HydrostaticSeries above), from rho0, rho0 g / B and 1/gamma.
   std::array<double, 5> hydrostatic{};
 
