@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "case_util.hpp"
+#include "run_util.hpp"
 #include "vrsph/analysis/laplace.hpp"
 #include "vrsph/driver/level_samples.hpp"
 #include "vrsph/sim/simulation.hpp"
@@ -21,15 +22,7 @@ namespace {
 
 using test::droplet_lattice_cen_alone;
 using test::load_case;
-
-// Steps to end_time exactly (the last step shortened to land on it), then the EOS pressure.
-template <int D>
-void run_to_end(Simulation<D>& sim, double end_time) {
-  while (sim.time() < end_time) {
-    sim.set_stop_time(end_time);
-    sim.step();
-  }
-}
+using test::run_to;
 
 // cases/droplet_2d.toml at dp = 5e-5 to t = 0.2 s: RMSE of the diameter pressure against 36.4 Pa.
 // Poster (DualSPHysics implementation): 0.4960 Pa; our goal 0.35 Pa. VRSPH_SLOW_SHIFTING=skillen
@@ -37,7 +30,7 @@ void run_to_end(Simulation<D>& sim, double end_time) {
 LaplaceError run_droplet(std::vector<std::string> sets) {
   CaseSpec spec = load_case("droplet_2d.toml", sets);
   Simulation<2> sim(spec);
-  run_to_end(sim, spec.end_time);
+  run_to(sim, spec.end_time);
   const OutputLine& line = spec.lines.front();
   const LaplaceError e = levels_laplace_error<2>(sim, line, 36.4);
   std::printf("droplet_2d dp 5e-5 t 0.2: mean %.3f Pa, RMSE %.4f Pa (NRMSE %.5f), RMSE all %.4f\n",
@@ -104,7 +97,7 @@ TEST(SlowDroplet, SphereWithOffsetAndCurvatureCorrection) {
       load_case("droplet_3d.toml", {"numerics.surface_tension.surface_offset=true",
                                     "numerics.surface_tension.curvature_correction=true"});
   Simulation<3> sim(spec);
-  run_to_end(sim, spec.end_time);
+  run_to(sim, spec.end_time);
   const auto& ps = sim.particles();
   double sum = 0.0;
   int n = 0;
@@ -130,7 +123,7 @@ WindowError vr_window_error(const char* case_file, double expected) {
   WindowError w;
   int n = 0;
   for (int k = 1; k <= 50; ++k) {
-    run_to_end(sim, 0.01 * k);
+    run_to(sim, 0.01 * k);
     if (k < 40) continue;
     const LaplaceError e = levels_laplace_error(sim, spec.lines.front(), expected);
     EXPECT_GT(e.n_points, 0u) << "no particle on the line at t = " << sim.time();
@@ -216,7 +209,7 @@ TEST_P(SlowVresSides, BothLevelsReachTheSameLaplacePressure) {
   std::array<double, 2> sum{};
   int n = 0;
   for (int k = 1; k <= 30; ++k) {  // landing on every 10 ms, as the CLI run with its outputs
-    run_to_end(sim, 0.01 * k);
+    run_to(sim, 0.01 * k);
     if (k < 10) continue;
     const std::array<double, 2> p = side_pressures(sim, 1.5e-3);
     sum[0] += p[0], sum[1] += p[1], ++n;
