@@ -73,6 +73,7 @@ void expect_series(const fs::path& out, const std::vector<PvdEntry>& pvd, double
   EXPECT_EQ(series[0].rfind("t,step,dt,n_fluid,n_buffer,mass_fluid,kinetic_energy,max_speed", 0),
             0u)
       << series[0];
+  EXPECT_EQ(series[0].find("kinetic_energy_cm"), std::string::npos) << "only with surface tension";
   last_step = -1;
   for (std::size_t k = 1; k < series.size(); ++k) {
     const auto c = split_csv(series[k]);
@@ -219,6 +220,12 @@ TEST(CliRun, SeriesFollowsTheLaplaceError) {
   EXPECT_DOUBLE_EQ(num(last[irmse]), lp.at("interp_rmse").get<double>());
   EXPECT_DOUBLE_EQ(num(last[imean]), lp.at("interp_mean_interior").get<double>());
   EXPECT_LT(num(last[rmse]), 36.4) << "the interior pressure has started to rise";
+  // With surface tension, the kinetic energy in the fluid's centre-of-mass frame: none at the
+  // start at rest, then the drop's own motion, at most all of its kinetic energy.
+  const std::size_t ke = col("kinetic_energy"), ke_cm = col("kinetic_energy_cm");
+  EXPECT_EQ(num(split_csv(series[1])[ke_cm]), 0.0) << series[1];
+  EXPECT_GT(num(last[ke_cm]), 0.0) << series.back();
+  EXPECT_LE(num(last[ke_cm]), num(last[ke]) * (1.0 + 1e-12)) << series.back();
   // The interpolated line: points every dp/2 across the 4 mm diameter, the interior ones (2h
   // from the ends of the points inside) counted, and a pressure that has risen as the strip's.
   EXPECT_GT(lp.at("interp_n_points").get<int>(), 20);

@@ -137,6 +137,30 @@ TEST(OutputSeries, ComputeRowOverFluidOnly) {
   EXPECT_EQ(total.max_speed, 5.0);
 }
 
+// Two fluid particles of masses m1, m2 (a wall and a buffer particle beside them, which do not
+// count): in the centre-of-mass frame their kinetic energy is m1 m2 / (m1 + m2) |v1 - v2|^2 / 2,
+// whatever velocity the pair shares, and split over two sets it is the same.
+TEST(OutputSeries, CentreOfMassKineticEnergy) {
+  ParticleSet<2> a;
+  a.push_back(1, Kind::fluid, {{0.0, 0.0}}, {{1.0, 2.0}}, 1000.0, 2.0);
+  a.push_back(2, Kind::wall, {{1.0, 0.0}}, {{50.0, 0.0}}, 1000.0, 9.0);
+  a.push_back(3, Kind::buffer, {{2.0, 0.0}}, {{0.0, -70.0}}, 1000.0, 9.0);
+  ParticleSet<2> b;
+  b.push_back(4, Kind::fluid, {{3.0, 0.0}}, {{-2.0, 6.0}}, 1000.0, 3.0);
+  const double expected = 0.5 * (2.0 * 3.0 / 5.0) * (3.0 * 3.0 + 4.0 * 4.0);  // 7.5
+  const std::vector<const ParticleSet<2>*> two{&a, &b};
+  EXPECT_NEAR(centre_of_mass_kinetic_energy<2>(two), expected, 1e-12);
+  // the same pair translating at 100 m/s more: its energy in its own frame does not change
+  for (ParticleSet<2>* ps : {&a, &b})
+    for (auto& v : ps->vel) v[0] += 100.0;
+  EXPECT_NEAR(centre_of_mass_kinetic_energy<2>(two), expected, 1e-9);
+  // one set alone: a single fluid particle has none
+  const std::vector<const ParticleSet<2>*> one{&b};
+  EXPECT_EQ(centre_of_mass_kinetic_energy<2>(one), 0.0);
+  const std::vector<const ParticleSet<2>*> none{};
+  EXPECT_EQ(centre_of_mass_kinetic_energy<2>(none), 0.0);
+}
+
 TEST(OutputSeries, AppendAndResumeDropsLaterRows) {
   TempDir dir;
   const fs::path path = dir.path / "series.csv";

@@ -109,6 +109,10 @@ void add_wall_columns(std::vector<SeriesExtraColumn>& c, std::size_t blocks, int
 
 std::vector<SeriesExtraColumn> extra_columns(const CaseSpec& spec) {
   std::vector<SeriesExtraColumn> c;
+  // With surface tension: a drop's shape oscillation and parasitic currents, whether it moves or
+  // not (kinetic_energy also holds its translation).
+  if (spec.fluid.surface_tension > 0.0)
+    c.push_back({"kinetic_energy_cm", [](const SeriesInputs& in) { return in.kinetic_energy_cm; }});
   add_level_columns(c, spec.refinements.size() + 1);
   add_wall_columns(c, spec.wall_blocks.size(), spec.dimension);
   if (has_laplace(spec)) {
@@ -250,6 +254,9 @@ void RunOutputs<D>::append_series(const Simulation<D>& sim, SeriesInputs& in) {
     for (int k = 0; k < D; ++k) a[static_cast<std::size_t>(k)] = f[k];
     in.wall_forces.push_back(a);
   }
+  std::vector<const ParticleSet<D>*> sets;
+  for (std::size_t l = 0; l < sim.level_count(); ++l) sets.push_back(&sim.level(l).ps);
+  in.kinetic_energy_cm = centre_of_mass_kinetic_energy<D>(sets);
   SeriesRow row;
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     double stored = 0.0;

@@ -27,6 +27,7 @@ struct SeriesInputs {
   LaplaceError laplace_interp;  // the same on the interpolated line
   std::vector<std::array<double, 3>> wall_forces;  // the fluid's force on each wall block (N)
   std::vector<double> mass_stored;  // kg: mass held by each level's mass points (refinement)
+  double kinetic_energy_cm = 0.0;   // J: the fluid's, in its centre-of-mass frame
 };
 
 // An extra series.csv column: its name in the header and its value in a row. The list of them,

@@ -32,6 +32,30 @@ SeriesRow compute_series_row(const ParticleSet<D>& ps, double t, long step, doub
   return row;
 }
 
+template <int D>
+double centre_of_mass_kinetic_energy(std::span<const ParticleSet<D>* const> sets) {
+  double mass = 0.0;
+  Vec<D> momentum{};
+  for (const ParticleSet<D>* ps : sets) {
+    for (std::size_t i = 0; i < ps->size(); ++i) {
+      if (ps->kind[i] != Kind::fluid) continue;
+      mass += ps->mass_of(i);
+      momentum += ps->mass_of(i) * ps->vel[i];
+    }
+  }
+  if (mass <= 0.0) return 0.0;
+  const Vec<D> mean_v = momentum * (1.0 / mass);
+  double energy = 0.0;
+  for (const ParticleSet<D>* ps : sets) {
+    for (std::size_t i = 0; i < ps->size(); ++i)
+      if (ps->kind[i] == Kind::fluid) energy += 0.5 * ps->mass_of(i) * norm2(ps->vel[i] - mean_v);
+  }
+  return energy;
+}
+
+template double centre_of_mass_kinetic_energy<2>(std::span<const ParticleSet<2>* const>);
+template double centre_of_mass_kinetic_energy<3>(std::span<const ParticleSet<3>* const>);
+
 template SeriesRow compute_series_row<2>(const ParticleSet<2>&, double, long, double);
 template SeriesRow compute_series_row<3>(const ParticleSet<3>&, double, long, double);
 

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,6 +51,13 @@ inline constexpr std::array kSeriesColumns = {
 // For several levels, combine rows with accumulate_series_row.
 template <int D>
 SeriesRow compute_series_row(const ParticleSet<D>& ps, double t, long step, double dt);
+
+// Kinetic energy of the fluid in its centre-of-mass frame: sum m |v - V|^2 / 2 over the fluid
+// particles of all the sets, V = sum m v / sum m their mean velocity (J; J/m in 2D). A drop's
+// oscillation and parasitic currents without its translation. Two passes in index order (V,
+// then the sum), so no large translational energy is subtracted.
+template <int D>
+double centre_of_mass_kinetic_energy(std::span<const ParticleSet<D>* const> sets);
 
 // Adds the counts, masses and energies of `other` into `row` and takes the larger max_speed
 // (t, step, dt and extras of `row` are kept): the row of several levels.
