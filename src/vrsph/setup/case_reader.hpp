@@ -51,6 +51,8 @@ inline constexpr Check kShepardFill{[](double v) { return v >= 0.0 && v <= 2.0; 
                                     "must be in [0, 2] (0: off; 2: Shepard everywhere)"};
 inline constexpr Check kBufferSpacing{[](double v) { return v >= 0.0 && v < 1.0; },
                                       "must be in [0, 1) (dp of each level; 0: off)"};
+inline constexpr Check kFluxEdge{[](double v) { return v >= 0.0 && v < 1.0; },
+                                 "must be in [0, 1) (a donor fill; 0: off)"};
 inline constexpr Check kRefreshInterval{[](double v) { return v > 0.0 && v <= 8.0; },
                                         "must be in (0, 8] (capillary time-step limits)"};
 inline constexpr Check kUnitHalfOpen{[](double v) { return v > 0.0 && v <= 1.0; },

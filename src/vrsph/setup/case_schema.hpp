@@ -37,7 +37,8 @@ inline constexpr std::string_view kNumericsKeys[] = {"cfl",
                                                      "vres_surface_across_levels",
                                                      "vres_buffer_surface",
                                                      "vres_shepard_fill",
-                                                     "vres_buffer_spacing"};
+                                                     "vres_buffer_spacing",
+                                                     "vres_flux_edge"};
 // The model tables of [numerics] (usually written as inline tables).
 inline constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 inline constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};

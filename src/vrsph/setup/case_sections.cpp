@@ -153,7 +153,7 @@ void read_surface_tension(const TableReader& n, SurfaceTensionParams& p) {
       r.opt_number("refresh_interval", kRefreshInterval).value_or(p.refresh_interval);
 }
 
-// [numerics]: cfl, precision, the model tables, the coupling's two keys and the initial density.
+// [numerics]: cfl, precision, the model tables, the coupling's keys and the start.
 void parse_numerics(const TableReader& r, CaseSpec& spec) {
   NumericsSpec& n = spec.numerics;
   n.cfl = r.opt_number("cfl", kUnitHalfOpen).value_or(n.cfl);
@@ -164,16 +164,16 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
   read_surface_tension(r, n.surface_tension);
   spec.vres_conserve_momentum =
       r.opt_bool("vres_conserve_momentum").value_or(spec.vres_conserve_momentum);
-  spec.vres_buffer_fill_min =
-      r.opt_number("vres_buffer_fill_min", kBelowHalf).value_or(spec.vres_buffer_fill_min);
-  spec.vres_buffer_ramp =
-      r.opt_number("vres_buffer_ramp", kBufferRamp).value_or(spec.vres_buffer_ramp);
+  auto number = [&r](const char* key, const Check& c, double& v) {
+    v = r.opt_number(key, c).value_or(v);
+  };
+  number("vres_buffer_fill_min", kBelowHalf, spec.vres_buffer_fill_min);
+  number("vres_buffer_ramp", kBufferRamp, spec.vres_buffer_ramp);
   spec.vres_surface_across_levels =
       r.opt_bool("vres_surface_across_levels").value_or(spec.vres_surface_across_levels);
-  spec.vres_shepard_fill =
-      r.opt_number("vres_shepard_fill", kShepardFill).value_or(spec.vres_shepard_fill);
-  spec.vres_buffer_spacing =
-      r.opt_number("vres_buffer_spacing", kBufferSpacing).value_or(spec.vres_buffer_spacing);
+  number("vres_shepard_fill", kShepardFill, spec.vres_shepard_fill);
+  number("vres_buffer_spacing", kBufferSpacing, spec.vres_buffer_spacing);
+  number("vres_flux_edge", kFluxEdge, spec.vres_flux_edge);
   spec.vres_buffer_surface =
       r.opt_enum("vres_buffer_surface", kBufferSurfaceNames).value_or(spec.vres_buffer_surface);
   n.hydrostatic_initial_density =

@@ -143,6 +143,9 @@ void write_numerics(Writer& w, const CaseSpec& s) {
   if (s.vres_shepard_fill > 0.0)  // written only when on
     w.kv("vres_shepard_fill", num(s.vres_shepard_fill),
          "donor fill below which buffer values are Shepard averages");
+  if (s.vres_flux_edge > 0.0)  // written only when on
+    w.kv("vres_flux_edge", num(s.vres_flux_edge),
+         "donor fill below which mass points pass their flux inward");
   if (s.vres_buffer_spacing > 0.0)  // written only when on
     w.kv("vres_buffer_spacing", num(s.vres_buffer_spacing),
          "dp within which buffer particles are moved apart");

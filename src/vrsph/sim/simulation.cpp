@@ -14,6 +14,7 @@
 #include "vrsph/sim/level_setup.hpp"
 #include "vrsph/sim/preflight.hpp"
 #include "vrsph/solver/stepper.hpp"
+#include "vrsph/vres/flux_edge.hpp"
 #include "vrsph/vres/levels.hpp"
 #include "vrsph/vres/momentum.hpp"
 
@@ -71,14 +72,11 @@ Simulation<D>::Simulation(CaseSpec& spec, CellLayout cells) : spec_(spec) {
     next_id += L.ps.size();
     links[k].region = layout[k].region;
     links[k].mass_points = level_mass_points<D>(links[k].region, L.prm.dp);
+    if (spec.vres_flux_edge > 0.0)
+      links[k].point_neighbours = mass_point_neighbours(links[k].mass_points, L.prm.dp);
   }
   counters_.next_id = next_id;
-  const CouplingOptions opt{
-      spec.vres_conserve_momentum,     spec.numerics.surface_tension.zero_net_force,
-      spec.vres_buffer_fill_min,       spec.vres_buffer_ramp,
-      spec.vres_surface_across_levels, spec.vres_buffer_surface,
-      spec.vres_shepard_fill,          spec.vres_buffer_spacing};
-  coupling_ = LevelCoupling<D>(std::move(links), opt);
+  coupling_ = LevelCoupling<D>(std::move(links), coupling_options(spec));
 
   // One domain for all levels, from the level-0 particles.
   Vec<D> lo, hi, origin;

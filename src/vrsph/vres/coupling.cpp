@@ -4,6 +4,7 @@
 
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/particles/within.hpp"
+#include "vrsph/vres/flux_edge.hpp"
 #include "vrsph/vres/interpolation.hpp"
 
 namespace vrsph {
@@ -30,10 +31,13 @@ class DonorStates {
 };
 
 // Mass the donor flow carries across a face element in dt: -rho (u . n) dA dt (n out of the
-// buffer, so inflow into the buffer is positive). Once the stored mass is negative only
-// positive increments are kept, so outflow cannot pile up a debt that blocks later inflow.
-inline double accumulate_mass(double stored, double rho, double u_n, double area, double dt) {
-  const double dm = -rho * u_n * area * dt;
+// buffer, so inflow into the buffer is positive).
+inline double flux_mass(double rho, double u_n, double area, double dt) {
+  return -rho * u_n * area * dt;
+}
+// The store after an increment dm: once it is negative only positive increments are kept, so
+// outflow cannot pile up a debt that blocks later inflow.
+inline double accumulate_mass(double stored, double dm) {
   return (stored < 0.0 && dm < 0.0) ? stored : stored + dm;
 }
 
@@ -76,20 +80,28 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
     st[static_cast<std::size_t>(q)] =
         interpolate_from_donor<D>(P.x, donors[P.donor], kVresCondLimit, rule.shepard_fill);
   });
+  // The share of the face element that holds fluid: the donor's kernel-smoothed indicator
+  // sum_j V_j W, walls counted (next to a wall the fluid sum alone falls to about 1/2 where
+  // the element is full). Across a free surface the smoothed indicator integrates to the
+  // fluid's true thickness, so the accumulated flux neither drops the top layers of a flow
+  // (as a yes/no free-surface test on div r did) nor counts whole elements half in air.
+  // Inside the fluid it is about 1. Points inside a wall (the wall sum exceeds the fluid sum)
+  // accumulate nothing (fill -1 here). Measured: docs/validation.md, "Figures formerly in code
+  // comments". With numerics.vres_flux_edge the increments of the outer points move inward.
+  std::vector<double> fill(points.size(), -1.0), dm(points.size(), 0.0);
+  for (std::size_t q = 0; q < points.size(); ++q) {
+    const InterpolatedState<D>& s = st[q];
+    if (s.shepard < kVresShepardMin || s.shepard_walls > s.shepard) continue;
+    fill[q] = s.shepard + s.shepard_walls;
+    dm[q] = flux_mass(s.rho, dot(s.vel, points[q].n), fill[q] * points[q].area, dt);
+  }
+  if (rule.flux_edge > 0.0) move_flux_inward(dm, fill, link.point_neighbours, rule.flux_edge);
   const std::size_t first_new = L.ps.size();
   for (std::size_t q = 0; q < points.size(); ++q) {
     MassPoint<D>& P = points[q];
     const InterpolatedState<D>& s = st[q];
-    // The share of the face element that holds fluid: the donor's kernel-smoothed indicator
-    // sum_j V_j W, walls counted (next to a wall the fluid sum alone falls to about 1/2 where
-    // the element is full). Across a free surface the smoothed indicator integrates to the
-    // fluid's true thickness, so the accumulated flux neither drops the top layers of a flow
-    // (as a yes/no free-surface test on div r did) nor counts whole elements half in air.
-    // Inside the fluid it is about 1. Points inside a wall (the wall sum exceeds the fluid sum)
-    // accumulate nothing. Measured: docs/validation.md, "Figures formerly in code comments".
-    if (s.shepard < kVresShepardMin || s.shepard_walls > s.shepard) continue;
-    const double fill = s.shepard + s.shepard_walls;
-    P.mass = accumulate_mass(P.mass, s.rho, dot(s.vel, P.n), fill * P.area, dt);
+    if (fill[q] < 0.0) continue;
+    P.mass = accumulate_mass(P.mass, dm[q]);
     if (P.mass < m) continue;
     const Vec<D> x_new = P.x - (entry * L.prm.dp) * P.n;
     if (crowded(L, x_new, kMinSpacing * L.prm.dp, first_new)) continue;  // mass stays stored

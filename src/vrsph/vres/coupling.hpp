@@ -27,6 +27,7 @@ template <int D>
 struct LevelLink {
   LevelRegion<D> region;                  // single-resolution runs: level 0 owns everything
   std::vector<MassPoint<D>> mass_points;  // where particles of this level are created
+  std::vector<std::vector<std::uint32_t>> point_neighbours;  // on their face (vres/flux_edge.hpp)
 };
 
 // How buffer values and mass fluxes are read from the donor level (numerics.vres_buffer_fill_min,
@@ -34,6 +35,8 @@ struct LevelLink {
 struct DonorRule {
   double fill_min = 0.0;      // buffer particles below this donor fill are deleted
   double shepard_fill = 0.0;  // below this donor fill, the Shepard average (interpolation.hpp)
+  double flux_edge =
+      0.0;  // mass points below this donor fill pass their flux inward (flux_edge.hpp)
 };
 
 struct CouplingTally {

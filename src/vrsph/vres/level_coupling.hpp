@@ -27,7 +27,21 @@ struct CouplingOptions {
   BufferSurface buffer_surface = BufferSurface::edge;  // numerics.vres_buffer_surface
   double shepard_fill = 0.0;                           // numerics.vres_shepard_fill
   double buffer_spacing = 0.0;  // numerics.vres_buffer_spacing, in dp of each level
+  double flux_edge = 0.0;       // numerics.vres_flux_edge
 };
+
+// The options as the case gives them.
+inline CouplingOptions coupling_options(const CaseSpec& spec) {
+  return {spec.vres_conserve_momentum,
+          spec.numerics.surface_tension.zero_net_force,
+          spec.vres_buffer_fill_min,
+          spec.vres_buffer_ramp,
+          spec.vres_surface_across_levels,
+          spec.vres_buffer_surface,
+          spec.vres_shepard_fill,
+          spec.vres_buffer_spacing,
+          spec.vres_flux_edge};
+}
 
 template <int D>
 class LevelCoupling {
@@ -94,7 +108,7 @@ class LevelCoupling {
   void volume_weights(std::vector<Level<D>>& levels, std::size_t l) const;
   void cross_sources(std::vector<Level<D>>& levels, std::size_t l) const;
   // How buffer values and mass fluxes are read from the donor (coupling.hpp).
-  DonorRule donor_rule() const { return {opt_.buffer_fill_min, opt_.shepard_fill}; }
+  DonorRule donor_rule() const { return {opt_.buffer_fill_min, opt_.shepard_fill, opt_.flux_edge}; }
   // Where a created particle is placed, in dp inside the buffer's outer face: 0.5 (Ricci et al.),
   // or, with the volume ramp, just inside the face, where its weight starts from about 0.
   double entry_depth() const { return opt_.buffer_ramp > 0.0 ? kRampEntryDepth : 0.5; }
