@@ -1,5 +1,9 @@
-// Shared case texts of the variable-resolution tests.
+// Shared case texts of the variable-resolution tests, and a run of the uniform flow.
 #pragma once
+
+#include <gtest/gtest.h>
+
+#include "vrsph/sim/simulation.hpp"
 
 namespace vrsph::test {
 
@@ -35,5 +39,29 @@ max = [0.8, 0.7]
 [output]
 interval = 0.1
 )";
+
+// kUniformFlowThroughAFace (with the options `spec` sets) run to its end: the mass the flow
+// carries across the face (rho U H t), the mass created and deleted, the fluid mass before and
+// after.
+struct FaceFlow {
+  double flux = 0.0, created = 0.0, deleted = 0.0, m0 = 0.0, m1 = 0.0;
+};
+inline FaceFlow run_face_flow(CaseSpec& spec) {
+  Simulation<2> sim(spec);
+  FaceFlow f;
+  sim.fluid_momentum(f.m0);
+  while (sim.time() < spec.end_time - 1e-12) sim.step();
+  sim.fluid_momentum(f.m1);
+  f.flux = 1000.0 * 1.0 * 0.4 * spec.end_time;
+  f.created = sim.counters().created_mass;
+  f.deleted = sim.counters().deleted_mass;
+  return f;
+}
+// Created and deleted mass within 1% of the flux, and the fluid mass kept within 1%.
+inline void expect_face_flow_keeps_mass(const FaceFlow& f) {
+  EXPECT_NEAR(f.created, f.flux, 0.01 * f.flux);
+  EXPECT_NEAR(f.deleted, f.flux, 0.01 * f.flux);
+  EXPECT_NEAR(f.m1 / f.m0, 1.0, 0.01);
+}
 
 }  // namespace vrsph::test

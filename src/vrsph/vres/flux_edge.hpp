@@ -26,7 +26,7 @@ template <int D>
 std::vector<std::vector<std::uint32_t>> mass_point_neighbours(const std::vector<MassPoint<D>>& pts,
                                                               double dp) {
   auto cell_of = [dp](const Vec<D>& x, int k) { return std::int64_t(std::floor(x[k] / dp)); };
-  auto key = [](const std::int64_t (&c)[3]) {
+  auto key = [](const std::int64_t(&c)[3]) {
     return (c[0] * 1000003 + c[1]) * 1000033 + c[2];  // distinct for the few cells a face holds
   };
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells;
