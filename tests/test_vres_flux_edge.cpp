@@ -52,6 +52,8 @@ TEST(VresFluxEdge, IncrementsMoveInsideTheEdge) {
   std::vector<double> dl = {1, 2, 3, 0, 0, 0, 0, 0, 0};
   move_flux_inward(dl, low, nb, 0.5);
   EXPECT_EQ(dl, (std::vector<double>{0, 6, 0, 0, 0, 0, 0, 0, 0}));
+  // without the neighbours formed it refuses rather than read past them
+  EXPECT_THROW(move_flux_inward(dl, low, {}, 0.5), std::logic_error);
 }
 
 // The uniform flow of VresFlux.CreatedMassMatchesFlux (test_vres.cpp) fills its face, so the

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <unordered_map>
 #include <vector>
 
@@ -63,6 +64,8 @@ std::vector<std::vector<std::uint32_t>> mass_point_neighbours(const std::vector<
 inline constexpr int kFluxEdgeHops = 8;
 inline void move_flux_inward(std::vector<double>& dm, const std::vector<double>& fill,
                              const std::vector<std::vector<std::uint32_t>>& nb, double edge) {
+  if (nb.size() != dm.size() || fill.size() != dm.size())
+    throw std::logic_error("move_flux_inward: the points' neighbours were not formed");
   std::vector<double> out = dm;
   for (std::size_t q = 0; q < dm.size(); ++q) {
     if (fill[q] < 0.0 || fill[q] >= edge) continue;
