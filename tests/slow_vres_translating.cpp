@@ -27,8 +27,7 @@ struct DropState {
   double pressure = 0.0;  // mean EOS pressure within 1 mm of the centroid, Pa
   double vx = 0.0;        // centroid velocity, m/s
   double aspect = 0.0;    // sqrt(I_max / I_min) - 1 of the mass's second moments about the centroid
-  double ke_cm =
-      0.0;  // kinetic energy in the centre-of-mass frame (series' kinetic_energy_cm), J/m
+  double ke_cm = 0.0;     // kinetic energy in the centre-of-mass frame (kinetic_energy_cm), J/m
 };
 
 DropState drop_state(const Simulation<2>& sim) {

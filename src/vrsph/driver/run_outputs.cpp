@@ -180,6 +180,14 @@ nlohmann::json laplace_json(const Simulation<D>& sim, const CaseSpec& spec) {
           {"interp_n_points", ei.n_points}};
 }
 
+// The particle sets of every level, in level order.
+template <int D>
+std::vector<const ParticleSet<D>*> level_sets(const Simulation<D>& sim) {
+  std::vector<const ParticleSet<D>*> sets;
+  for (std::size_t l = 0; l < sim.level_count(); ++l) sets.push_back(&sim.level(l).ps);
+  return sets;
+}
+
 }  // namespace
 
 template <int D>
@@ -208,11 +216,7 @@ template <int D>
 void RunOutputs<D>::write_snapshot(Simulation<D>& sim, int index) {
   const std::size_t nl = sim.level_count();
   MergedLevels<D> merged;
-  if (nl > 1) {
-    std::vector<const ParticleSet<D>*> sets;
-    for (std::size_t l = 0; l < nl; ++l) sets.push_back(&sim.level(l).ps);
-    merged = merge_levels<D>(sets);
-  }
+  if (nl > 1) merged = merge_levels<D>(level_sets(sim));
   const ParticleSet<D>& ps = nl > 1 ? merged.particles : sim.particles();
   const std::span<const std::uint8_t> level(merged.level);  // empty: single level, all 0
   const std::vector<ExtraField> extra_fields = surface_extras(sim);
@@ -254,9 +258,7 @@ void RunOutputs<D>::append_series(const Simulation<D>& sim, SeriesInputs& in) {
     for (int k = 0; k < D; ++k) a[static_cast<std::size_t>(k)] = f[k];
     in.wall_forces.push_back(a);
   }
-  std::vector<const ParticleSet<D>*> sets;
-  for (std::size_t l = 0; l < sim.level_count(); ++l) sets.push_back(&sim.level(l).ps);
-  in.kinetic_energy_cm = centre_of_mass_kinetic_energy<D>(sets);
+  in.kinetic_energy_cm = centre_of_mass_kinetic_energy<D>(level_sets(sim));
   SeriesRow row;
   for (std::size_t l = 0; l < sim.level_count(); ++l) {
     double stored = 0.0;
