@@ -11,9 +11,10 @@
 #   vr_square_4h, vr_square_2h                square_droplet_vr_2d, from rest at p = 0, to 0.5 s
 # --model published (the default): Cen et al. 2024 and Ricci et al. 2024 as published, none of
 #   vrsph's options (no surface_offset, curvature_correction, zero_net_force,
-#   vres_conserve_momentum, vres_buffer_fill_min; buffers keep their own level's lambda and
-#   normal; shells rounded up to whole dp as DualSPHysics lays them; the square on the lattice
-#   from min), the surface fields refreshed at every step.
+#   vres_conserve_momentum, vres_buffer_fill_min, vres_shepard_fill, vres_flux_edge; buffers keep
+#   their own level's lambda and normal; shells rounded up to whole dp as DualSPHysics lays them;
+#   the VR drops on the lattice, the square's from min), the surface fields refreshed at every
+#   step.
 #   Without the net-force correction the drop drifts (about 3 mm by 0.6 s on droplet_2d): these
 #   rows run in a domain of 6 cm (single resolution) or 1.6 cm (VR) and are measured in the
 #   drop's frame with scripts/laplace_centroid.sh.
@@ -54,7 +55,8 @@ published_st=(--set 'numerics.surface_tension.refresh="every_step"'
   --set numerics.surface_tension.zero_net_force=false)
 published_vr=("${published_st[@]}" --set numerics.vres_conserve_momentum=false
   --set numerics.vres_buffer_fill_min=0 --set 'numerics.vres_buffer_surface="own"'
-  --set 'refinement.0.buffer_rounding="whole_dp"')
+  --set numerics.vres_shepard_fill=0 --set numerics.vres_flux_edge=0
+  --set 'refinement.0.buffer_rounding="whole_dp"' --set 'fluid_block.0.fill="lattice"')
 
 case "$row" in
   sr_lattice|sr_rings|sr_rings_on_radius)
@@ -71,7 +73,6 @@ case "$row" in
       sets+=(--set fluid_block.0.pressure=36.4)
     else
       case_file=cases/square_droplet_vr_2d.toml
-      [ "$model" = published ] && sets+=(--set 'fluid_block.0.fill="lattice"')
     fi
     [ "$model" = published ] && sets+=("${published_vr[@]}" --set 'domain.min=[-0.008,-0.008]'
       --set 'domain.max=[0.008,0.008]') ;;

@@ -5,8 +5,9 @@
 # say what was drawn (both levels and their buffer particles; walls; rho0 g depth on the tank's
 # line; "parasitic currents" for the drop only); laplace_window.sh's mean must equal the mean of
 # series.csv's column; probe_window.sh's figures on a probe file made up here; draws.sh's
-# table for two draws, and a second call that finds them finished. Without gnuplot the test is
-# skipped (exit 77) with a message.
+# table for two draws, and a second call that finds them finished; poster_runs.sh's published
+# preset with none of vrsph's options. Without gnuplot the test is skipped (exit 77) with a
+# message.
 #   tests/scripts_test.sh VRSPH_BINARY REPO_ROOT
 set -euo pipefail
 
@@ -121,4 +122,25 @@ sleep 1
   --set resolution.dp=2e-4 --set case.end_time=0.002 --set output.interval=0.001 \
   --set 'output.formats=["csv"]' > /dev/null || fail "draws.sh (again) exited $?"
 [ "$(stat -c %Y "$dr/k0/summary.json")" = "$before" ] || fail "draws.sh ran a finished draw again"
+# poster_runs.sh: the published preset leaves none of vrsph's own options on (the resolved
+# case.toml of a tiny VR circle run names none of them with a value other than 0 or false, and
+# lays the drop on the lattice), while --model vrsph keeps the case's.
+pr=$tmp/poster
+for model in published vrsph; do
+  "$root/scripts/poster_runs.sh" --binary "$vrsph" --threads 1 --model "$model" vr_circle_4h \
+    "$pr/$model" --set resolution.dp=2e-4 --set case.end_time=0.0005 > "$tmp/poster.log" 2>&1 ||
+    fail "poster_runs.sh --model $model exited $?: $(cat "$tmp/poster.log")"
+done
+pub=$pr/published/case.toml
+on=$(awk '$1 ~ /^vres_(shepard_fill|flux_edge|buffer_spacing|buffer_ramp|buffer_fill_min)$/ &&
+  $3 + 0 != 0 { print $1 }' "$pub")
+[ -z "$on" ] || fail "published preset: $on not 0 in $pub"
+for key in 'surface_offset = true' 'curvature_correction = true' 'zero_net_force = true' \
+  'vres_conserve_momentum = true' 'refresh = "capillary"' 'fill = "rings"'; do
+  grep -qF "$key" "$pub" && fail "published preset: $pub has '$key'"
+done
+for key in 'fill = "lattice"' 'vres_buffer_surface = "own"' 'buffer_rounding = "whole_dp"'; do
+  grep -qF "$key" "$pub" || fail "published preset: $pub lacks '$key'"
+done
+grep -q '^vres_shepard_fill = 2' "$pr/vrsph/case.toml" || fail "--model vrsph lost the case's options"
 echo "scripts_test: all scripts ran"
