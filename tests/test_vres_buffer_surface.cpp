@@ -1,11 +1,14 @@
 // Where buffer particles take lambda and the normal from (numerics.vres_buffer_surface;
 // vres/level_coupling.cpp exchange_buffer_field; issue #20 item 4, the coupling as published):
 // their own level's sums ("own"), the other level's fluid near the outer edge of their shell
-// ("edge", the default) or everywhere in it ("donor"). droplet_vr_2d at dp 2e-4 / 1e-4, t = 0.
+// ("edge", the default) or everywhere in it ("donor"), or lambda as "edge" and the normal as
+// "donor" ("donor_normals"). droplet_vr_2d at dp 2e-4 / 1e-4, t = 0.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "case_parser_fixtures.hpp"
 #include "case_util.hpp"
@@ -62,6 +65,53 @@ TEST(VresBufferSurface, OwnSumsSeeTheShellEdgeAndTheExchangeRemovesIt) {
   EXPECT_LE(donor.largest_dev, edge.largest_dev + 1e-12);
 }
 
+// "donor_normals": lambda exactly as "edge" (so also every fluid particle's normal, which sums
+// over lambda), while every buffer particle's normal is the other level's: in the inner part of
+// the shell, where "edge" keeps the level's own normal, some change (the surface particles of the
+// buffer next to the face, at both crossings of each level).
+TEST(VresBufferSurface, DonorNormalsChangeOnlyTheBufferNormals) {
+  struct Fields {
+    std::vector<SurfaceFields<2>> sf;
+    std::vector<std::vector<Kind>> kind;
+  };
+  auto fields = [](const std::string& mode) {
+    CaseSpec spec =
+        load_case("droplet_vr_2d.toml",
+                  {"resolution.dp=2e-4", "numerics.vres_buffer_surface=\"" + mode + "\""});
+    Simulation<2> sim(spec);
+    sim.update_surface_fields();
+    Fields out;
+    for (std::size_t l = 0; l < 2; ++l) {
+      out.sf.push_back(sim.surface_fields(l));
+      out.kind.push_back(sim.level(l).ps.kind);
+    }
+    return out;
+  };
+  const Fields e = fields("edge"), d = fields("donor_normals");
+  const auto& edge = e.sf;
+  const auto& dn = d.sf;
+  std::size_t changed = 0, buffers = 0;
+  for (std::size_t l = 0; l < 2; ++l) {
+    const std::vector<Kind>& kind = e.kind[l];
+    ASSERT_EQ(d.kind[l], kind);
+    ASSERT_EQ(dn[l].normal.size(), kind.size());
+    for (std::size_t i = 0; i < kind.size(); ++i) {
+      EXPECT_EQ(dn[l].lambda[i], edge[l].lambda[i]) << "level " << l << ", particle " << i;
+      const Vec<2> a = dn[l].normal[i], b = edge[l].normal[i];
+      if (kind[i] != Kind::buffer) {
+        EXPECT_TRUE(a[0] == b[0] && a[1] == b[1]) << "fluid normal, level " << l << ", " << i;
+        continue;
+      }
+      ++buffers;
+      const double m = norm(a);
+      EXPECT_TRUE(m == 0.0 || std::abs(m - 1.0) < 1e-12) << "buffer normal of length " << m;
+      if (norm(a - b) > 1e-6) ++changed;
+    }
+  }
+  std::printf("donor_normals: %zu of %zu buffer normals differ from edge's\n", changed, buffers);
+  EXPECT_GE(changed, 4u);
+}
+
 // Also numerics.vres_shepard_fill (vres/interpolation.hpp), checked here with its neighbour key.
 TEST(VresBufferSurface, KeysAreCheckedAndWrittenBack) {
   using namespace case_fixtures;
@@ -70,6 +120,8 @@ TEST(VresBufferSurface, KeysAreCheckedAndWrittenBack) {
   const CaseSpec s = parse_text(with_numerics("vres_buffer_surface = \"own\"\n"));
   EXPECT_EQ(s.vres_buffer_surface, BufferSurface::own);
   EXPECT_EQ(written_back(s).vres_buffer_surface, BufferSurface::own);
+  const CaseSpec n = parse_text(with_numerics("vres_buffer_surface = \"donor_normals\"\n"));
+  EXPECT_EQ(written_back(n).vres_buffer_surface, BufferSurface::donor_normals);
   expect_contains(error_of(with_numerics("vres_shepard_fill = 3\n")),
                   {"numerics.vres_shepard_fill = 3", "[0, 2]"});
   const CaseSpec dflt = parse_text(kMinimal);

@@ -101,7 +101,10 @@ inline constexpr EnumName<SurfaceRefresh> kRefreshNames[] = {
 inline constexpr EnumName<BufferRounding> kBufferRoundingNames[] = {
     {"none", BufferRounding::none}, {"whole_dp", BufferRounding::whole_dp}};
 inline constexpr EnumName<BufferSurface> kBufferSurfaceNames[] = {
-    {"own", BufferSurface::own}, {"edge", BufferSurface::edge}, {"donor", BufferSurface::donor}};
+    {"own", BufferSurface::own},
+    {"edge", BufferSurface::edge},
+    {"donor", BufferSurface::donor},
+    {"donor_normals", BufferSurface::donor_normals}};
 inline constexpr EnumName<OutputCompression> kCompressionNames[] = {
     {"none", OutputCompression::none}, {"zlib", OutputCompression::zlib}};
 

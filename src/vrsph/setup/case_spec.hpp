@@ -31,8 +31,9 @@ enum class BufferRounding { none, whole_dp };
 // numerics.vres_buffer_surface: where buffer particles take lambda and the normal from. own:
 // their own level's sums (as Ricci et al. 2024 and DualSPHysics); edge: from the other level's
 // fluid near the outer edge of their shell, where their own support is cut (vrsph's default);
-// donor: from the other level's fluid everywhere in the shell.
-enum class BufferSurface { own, edge, donor };
+// donor: from the other level's fluid everywhere in the shell; donor_normals: lambda as edge, the
+// normal from the other level's fluid everywhere in the shell.
+enum class BufferSurface { own, edge, donor, donor_normals };
 enum class WallShape { tank, box };
 // output.precision: how the particle fields of a snapshot are stored (positions stay double).
 enum class OutputPrecision { float64, float32 };

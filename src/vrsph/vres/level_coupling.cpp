@@ -1,5 +1,6 @@
 #include "vrsph/vres/level_coupling.hpp"
 
+#include <limits>
 #include <type_traits>
 
 #include "vrsph/exec/parallel.hpp"
@@ -27,9 +28,10 @@ bool fluid_changed(const CouplingTally& tally) {
 }
 
 // Reach, in h of the level, of a buffer particle's own lambda and normal (see
-// exchange_buffer_field).
+// exchange_buffer_field); infinite: every buffer particle takes the donor's value.
 constexpr double kBufferLambdaReach = 1.0;
 constexpr double kBufferNormalReach = 2.0;
+constexpr double kEverywhere = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -48,7 +50,12 @@ constexpr double kBufferNormalReach = 2.0;
 // its direction where most of the donor weight has a normal (|average| >= 1/2), and is zero
 // otherwise.
 // numerics.vres_buffer_surface: "edge" is the above; "donor" gives every buffer particle the
-// other level's value (reach without limit); "own" none (the published coupling).
+// other level's value (reach without limit); "own" none (the published coupling);
+// "donor_normals" lambda as "edge" and every buffer particle the other level's normal. With own
+// normals in the inner part of the shell, each level's buffer continues the level's own surface
+// up to the face, so where the two levels' surfaces meet at an angle (a notch at a crossing) the
+// curvature of neither level sees the kink, and a VR drop could stay pinned in a deformed shape
+// (docs/validation.md, "The shipped VR drop's second draw").
 template <int D>
 template <class T>
 void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std::size_t l,
@@ -62,8 +69,7 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
     if (L.ps.kind[i] != Kind::buffer) return;
     const ZoneInfo<D> z = region.classify(L.ps.pos[i]);
     if (z.donor < 0) return;  // moved into the fluid region during the step: kind changes later
-    if (opt_.buffer_surface == BufferSurface::edge && z.depth + reach_h * L.prm.h <= z.width)
-      return;  // own support inside fluid + shell
+    if (z.depth + reach_h * L.prm.h <= z.width) return;  // own support inside fluid + shell
     const Level<D>& dl = levels[static_cast<std::size_t>(z.donor)];
     const std::vector<T>& donor_field = dl.sf.*field;
     if (donor_field.size() != dl.ps.size()) return;  // the donor holds no such field yet
@@ -142,13 +148,17 @@ void LevelCoupling<D>::before_pack(std::vector<Level<D>>& levels, std::size_t l)
 template <int D>
 void LevelCoupling<D>::after_surface_sums(std::vector<Level<D>>& levels, std::size_t l) const {
   if (exchanges_buffer_fields())
-    exchange_buffer_field(levels, l, &SurfaceFields<D>::lambda, kBufferLambdaReach);
+    exchange_buffer_field(
+        levels, l, &SurfaceFields<D>::lambda,
+        opt_.buffer_surface == BufferSurface::donor ? kEverywhere : kBufferLambdaReach);
 }
 
 template <int D>
 void LevelCoupling<D>::after_normals(std::vector<Level<D>>& levels, std::size_t l) const {
   if (exchanges_buffer_fields())
-    exchange_buffer_field(levels, l, &SurfaceFields<D>::normal, kBufferNormalReach);
+    exchange_buffer_field(
+        levels, l, &SurfaceFields<D>::normal,
+        opt_.buffer_surface == BufferSurface::edge ? kBufferNormalReach : kEverywhere);
 }
 
 template <int D>
