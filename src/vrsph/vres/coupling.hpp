@@ -35,8 +35,7 @@ struct LevelLink {
 struct DonorRule {
   double fill_min = 0.0;      // buffer particles below this donor fill are deleted
   double shepard_fill = 0.0;  // below this donor fill, the Shepard average (interpolation.hpp)
-  double flux_edge =
-      0.0;  // mass points below this donor fill pass their flux inward (flux_edge.hpp)
+  double flux_edge = 0.0;     // below this donor fill, mass points pass flux inward (flux_edge.hpp)
 };
 
 struct CouplingTally {
