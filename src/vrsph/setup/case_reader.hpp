@@ -104,7 +104,8 @@ inline constexpr EnumName<BufferSurface> kBufferSurfaceNames[] = {
     {"own", BufferSurface::own},
     {"edge", BufferSurface::edge},
     {"donor", BufferSurface::donor},
-    {"donor_normals", BufferSurface::donor_normals}};
+    {"donor_normals", BufferSurface::donor_normals},
+    {"edge_kink", BufferSurface::edge_kink}};
 inline constexpr EnumName<OutputCompression> kCompressionNames[] = {
     {"none", OutputCompression::none}, {"zlib", OutputCompression::zlib}};
 

@@ -32,8 +32,9 @@ enum class BufferRounding { none, whole_dp };
 // their own level's sums (as Ricci et al. 2024 and DualSPHysics); edge: from the other level's
 // fluid near the outer edge of their shell, where their own support is cut (vrsph's default);
 // donor: from the other level's fluid everywhere in the shell; donor_normals: lambda as edge, the
-// normal from the other level's fluid everywhere in the shell.
-enum class BufferSurface { own, edge, donor, donor_normals };
+// normal from the other level's fluid everywhere in the shell; edge_kink: as edge, and the normal
+// moved to the other level's where the two meet at a kink (vres/kink_normal.hpp).
+enum class BufferSurface { own, edge, donor, donor_normals, edge_kink };
 enum class WallShape { tank, box };
 // output.precision: how the particle fields of a snapshot are stored (positions stay double).
 enum class OutputPrecision { float64, float32 };

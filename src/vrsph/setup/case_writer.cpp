@@ -151,7 +151,7 @@ void write_numerics(Writer& w, const CaseSpec& s) {
          "dp within which buffer particles are moved apart");
   if (s.vres_buffer_surface != BufferSurface::edge)  // written only when not the default
     w.kv("vres_buffer_surface", toml_quote(enum_name(kBufferSurfaceNames, s.vres_buffer_surface)),
-         "buffers' lambda and normal: own | edge | donor | donor_normals");
+         "buffers' lambda and normal: own | edge | donor | donor_normals | edge_kink");
 }
 
 // [[fluid_block]] and [[wall_block]].

@@ -6,6 +6,7 @@
 #include "vrsph/exec/parallel.hpp"
 #include "vrsph/vres/buffer_spacing.hpp"
 #include "vrsph/vres/interpolation.hpp"
+#include "vrsph/vres/kink_normal.hpp"
 #include "vrsph/vres/momentum.hpp"
 
 namespace vrsph {
@@ -55,12 +56,14 @@ constexpr double kEverywhere = std::numeric_limits<double>::infinity();
 // normals in the inner part of the shell, each level's buffer continues the level's own surface
 // up to the face, so where the two levels' surfaces meet at an angle (a notch at a crossing) the
 // curvature of neither level sees the kink, and a VR drop could stay pinned in a deformed shape
-// (docs/validation.md, "The shipped VR drop's second draw").
+// (docs/validation.md, "The shipped VR drop's second draw"). "edge_kink": as "edge", and in the
+// inner part of the shell the normal moves to the other level's where the two disagree by more
+// than a surface without a kink does (kink: vres/kink_normal.hpp).
 template <int D>
 template <class T>
 void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std::size_t l,
                                              std::vector<T> SurfaceFields<D>::*field,
-                                             double reach_h) const {
+                                             double reach_h, bool kink) const {
   Level<D>& L = levels[l];
   const LevelRegion<D>& region = links_[l].region;
   std::vector<T>& own = L.sf.*field;
@@ -69,7 +72,11 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
     if (L.ps.kind[i] != Kind::buffer) return;
     const ZoneInfo<D> z = region.classify(L.ps.pos[i]);
     if (z.donor < 0) return;  // moved into the fluid region during the step: kind changes later
-    if (z.depth + reach_h * L.prm.h <= z.width) return;  // own support inside fluid + shell
+    const bool inner = z.depth + reach_h * L.prm.h <= z.width;  // own support in fluid + shell
+    if (inner && !kink) return;
+    if constexpr (std::is_same_v<T, Vec<D>>) {
+      if (inner && norm2(own[i]) == 0.0) return;  // kink_normal keeps a zero own normal
+    }
     const Level<D>& dl = levels[static_cast<std::size_t>(z.donor)];
     const std::vector<T>& donor_field = dl.sf.*field;
     if (donor_field.size() != dl.ps.size()) return;  // the donor holds no such field yet
@@ -77,6 +84,7 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
     if constexpr (std::is_same_v<T, Vec<D>>) {
       const double m = norm(v);
       v = m >= 0.5 ? v * (1.0 / m) : Vec<D>{};
+      if (inner) v = kink_normal(own[i], v);
     }
     own[i] = v;
   });
@@ -155,10 +163,12 @@ void LevelCoupling<D>::after_surface_sums(std::vector<Level<D>>& levels, std::si
 
 template <int D>
 void LevelCoupling<D>::after_normals(std::vector<Level<D>>& levels, std::size_t l) const {
-  if (exchanges_buffer_fields())
-    exchange_buffer_field(
-        levels, l, &SurfaceFields<D>::normal,
-        opt_.buffer_surface == BufferSurface::edge ? kBufferNormalReach : kEverywhere);
+  if (!exchanges_buffer_fields()) return;
+  const BufferSurface mode = opt_.buffer_surface;
+  const bool whole_shell = mode == BufferSurface::donor || mode == BufferSurface::donor_normals;
+  exchange_buffer_field(levels, l, &SurfaceFields<D>::normal,
+                        whole_shell ? kEverywhere : kBufferNormalReach,
+                        mode == BufferSurface::edge_kink);
 }
 
 template <int D>

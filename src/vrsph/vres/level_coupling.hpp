@@ -115,7 +115,8 @@ class LevelCoupling {
   static constexpr double kRampEntryDepth = 0.01;
   template <class T>
   void exchange_buffer_field(std::vector<Level<D>>& levels, std::size_t l,
-                             std::vector<T> SurfaceFields<D>::*field, double reach_h) const;
+                             std::vector<T> SurfaceFields<D>::*field, double reach_h,
+                             bool kink = false) const;
 
   std::vector<LevelLink<D>> links_;
   CouplingOptions opt_;
