@@ -68,24 +68,24 @@ TEST(VresBufferSurface, OwnSumsSeeTheShellEdgeAndTheExchangeRemovesIt) {
   EXPECT_LE(donor.largest_dev, edge.largest_dev + 1e-12);
 }
 
-// kink_normal: the own normal where the other level's differs from it by at most kKinkFrom, the
-// other level's from kKinkFull on, a unit vector between the two in between; a zero normal on
-// either side leaves the own one.
+// kink_normal with threshold a = 0.1: the own normal where the other level's differs from it by at
+// most a, the other level's from 3a on, a unit vector between the two in between; a zero normal
+// on either side leaves the own one.
 TEST(VresBufferSurface, KinkNormalTakesTheDonorOnlyAtAKink) {
   const Vec<2> up{0.0, 1.0};
   auto tilted = [](double angle) { return Vec<2>{std::sin(angle), std::cos(angle)}; };
   // |n_d - n_o| = 2 sin(angle / 2)
   const Vec<2> near = tilted(0.08), far = tilted(0.5), mid = tilted(0.2);
-  EXPECT_EQ(kink_normal(up, near)[0], 0.0);
-  EXPECT_EQ(kink_normal(up, far)[0], far[0]);
-  EXPECT_EQ(kink_normal(up, far)[1], far[1]);
-  const Vec<2> m = kink_normal(up, mid);  // |n_d - n_o| = 0.1997: s = 0.4983
+  EXPECT_EQ(kink_normal(up, near, 0.1)[0], 0.0);
+  EXPECT_EQ(kink_normal(up, far, 0.1)[0], far[0]);
+  EXPECT_EQ(kink_normal(up, far, 0.1)[1], far[1]);
+  const Vec<2> m = kink_normal(up, mid, 0.1);  // |n_d - n_o| = 0.1997: s = 0.4983
   EXPECT_NEAR(norm(m), 1.0, 1e-15);
   EXPECT_GT(m[0], 0.4 * mid[0]);
   EXPECT_LT(m[0], 0.6 * mid[0]);
   const Vec<2> zero{};
-  EXPECT_EQ(norm(kink_normal(zero, far)), 0.0);
-  EXPECT_EQ(kink_normal(up, zero)[1], 1.0);
+  EXPECT_EQ(norm(kink_normal(zero, far, 0.1)), 0.0);
+  EXPECT_EQ(kink_normal(up, zero, 0.1)[1], 1.0);
 }
 
 // "donor_normals": lambda exactly as "edge" (so also every fluid particle's normal, which sums
@@ -136,7 +136,8 @@ TEST(VresBufferSurface, DonorNormalsChangeOnlyTheBufferNormals) {
 }
 
 // "edge_kink": lambda and every fluid normal exactly as "edge", and each buffer normal
-// kink_normal(edge's, donor_normals') (both runs take the donor's normal from the same fields).
+// kink_normal(edge's, donor_normals', the default threshold 0.1) (both runs take the donor's
+// normal from the same fields).
 // The lattice start (a square outline cut off by the circle) meets the face with kinks at t = 0:
 // there some buffer normals move (measured 8 of the 38 that donor_normals changes).
 TEST(VresBufferSurface, EdgeKinkBlendsOnlyWhereTheLevelsDisagree) {
@@ -160,7 +161,7 @@ TEST(VresBufferSurface, EdgeKinkBlendsOnlyWhereTheLevelsDisagree) {
       const Vec<2> e = edge[l].first.normal[i], d = donor[l].first.normal[i];
       const Vec<2> k = kink[l].first.normal[i];
       EXPECT_EQ(kink[l].first.lambda[i], edge[l].first.lambda[i]);
-      const Vec<2> want = kind[i] == Kind::buffer ? kink_normal(e, d) : e;
+      const Vec<2> want = kind[i] == Kind::buffer ? kink_normal(e, d, 0.1) : e;
       EXPECT_TRUE(k[0] == want[0] && k[1] == want[1]) << "level " << l << ", particle " << i;
       if (kind[i] != Kind::buffer) continue;
       if (norm(d - e) > 1e-6) ++differ;
@@ -185,6 +186,12 @@ TEST(VresBufferSurface, KeysAreCheckedAndWrittenBack) {
   EXPECT_EQ(written_back(n).vres_buffer_surface, BufferSurface::donor_normals);
   const CaseSpec k = parse_text(with_numerics("vres_buffer_surface = \"edge_kink\"\n"));
   EXPECT_EQ(written_back(k).vres_buffer_surface, BufferSurface::edge_kink);
+  EXPECT_EQ(k.vres_kink_threshold, 0.1);
+  const CaseSpec a = parse_text(
+      with_numerics("vres_buffer_surface = \"edge_kink\"\nvres_kink_threshold = 0.05\n"));
+  EXPECT_EQ(written_back(a).vres_kink_threshold, 0.05);
+  expect_contains(error_of(with_numerics("vres_kink_threshold = 0\n")),
+                  {"numerics.vres_kink_threshold = 0", "(0, 0.5]"});
   expect_contains(error_of(with_numerics("vres_shepard_fill = 3\n")),
                   {"numerics.vres_shepard_fill = 3", "[0, 2]"});
   const CaseSpec dflt = parse_text(kMinimal);

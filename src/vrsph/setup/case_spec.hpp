@@ -137,6 +137,7 @@ struct CaseSpec {
   BufferSurface vres_buffer_surface = BufferSurface::edge;  // buffers' lambda and normal
   double vres_shepard_fill = 0.0;    // below this donor fill, buffers take Shepard averages
   double vres_flux_edge = 0.0;       // below this donor fill, mass points pass their flux inward
+  double vres_kink_threshold = 0.1;  // edge_kink: |n_d - n_o| from which the donor's normal enters
   double vres_buffer_spacing = 0.0;  // buffer particles kept this many dp apart (0: off)
 
   // geometry

@@ -12,8 +12,13 @@
 // curvature's differences of neighbouring normals. So the donor's normal is taken only where it
 // disagrees with the own normal n_o by more than the noise of a surface that has no kink:
 //   s = clamp((|n_d - n_o| - a) / (b - a), 0, 1),   n = (n_o + s (n_d - n_o)) / |...|,
-// with a = 0.1 and b = 0.3, chosen by measurement (docs/validation.md, "A buffer normal that sees
-// the kink"). Where either normal is zero (no surface by that level's lambda) the own one stays.
+// with b = 3a and a = numerics.vres_kink_threshold. Where either normal is zero (no surface by
+// that level's lambda) the own one stays. The noise of a smooth surface's normals scales with
+// dp / R (the normal turns by about dp_coarse / R between neighbours), a kink's turn does not:
+// measured on the VR drop (docs/validation.md, "A buffer normal that sees the kink"), a = 0.1
+// suits R / dp_coarse = 10 and a = 0.05 suits 20; about a = dp_coarse / R, while a lower a
+// switches on the noise of a smooth surface (drops at rest then get noisier) and a higher one lets
+// a kink grow before it is seen (the drop oscillates about it).
 #pragma once
 
 #include <algorithm>
@@ -22,15 +27,12 @@
 
 namespace vrsph {
 
-inline constexpr double kKinkFrom = 0.1;  // |n_d - n_o| below which the own normal stays
-inline constexpr double kKinkFull = 0.3;  // |n_d - n_o| from which the donor's is taken whole
-
-// The normal of a buffer particle of own normal n_o where the other level's normal is n_d.
+// The normal of a buffer particle of own normal n_o where the other level's normal is n_d, with
+// threshold a (the donor's is taken whole from 3a on).
 template <int D>
-Vec<D> kink_normal(const Vec<D>& n_own, const Vec<D>& n_donor) {
+Vec<D> kink_normal(const Vec<D>& n_own, const Vec<D>& n_donor, double a) {
   if (norm2(n_own) == 0.0 || norm2(n_donor) == 0.0) return n_own;
-  const double s = std::clamp((norm(n_donor - n_own) - kKinkFrom) / (kKinkFull - kKinkFrom), 0.0,
-                              1.0);
+  const double s = std::clamp((norm(n_donor - n_own) - a) / (2.0 * a), 0.0, 1.0);  // b - a = 2a
   if (s <= 0.0) return n_own;
   const Vec<D> b = n_own + (n_donor - n_own) * s;
   const double m = norm(b);

@@ -84,7 +84,7 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
     if constexpr (std::is_same_v<T, Vec<D>>) {
       const double m = norm(v);
       v = m >= 0.5 ? v * (1.0 / m) : Vec<D>{};
-      if (inner) v = kink_normal(own[i], v);
+      if (inner) v = kink_normal(own[i], v, opt_.kink_threshold);
     }
     own[i] = v;
   });

@@ -28,6 +28,7 @@ struct CouplingOptions {
   double shepard_fill = 0.0;                           // numerics.vres_shepard_fill
   double buffer_spacing = 0.0;  // numerics.vres_buffer_spacing, in dp of each level
   double flux_edge = 0.0;       // numerics.vres_flux_edge
+  double kink_threshold = 0.1;  // numerics.vres_kink_threshold
 };
 
 // The options as the case gives them.
@@ -40,7 +41,8 @@ inline CouplingOptions coupling_options(const CaseSpec& spec) {
           spec.vres_buffer_surface,
           spec.vres_shepard_fill,
           spec.vres_buffer_spacing,
-          spec.vres_flux_edge};
+          spec.vres_flux_edge,
+          spec.vres_kink_threshold};
 }
 
 template <int D>
