@@ -136,14 +136,15 @@ TEST(VresBufferSurface, DonorNormalsChangeOnlyTheBufferNormals) {
 }
 
 // "edge_kink": lambda and every fluid normal exactly as "edge", and each buffer normal
-// kink_normal(edge's, donor_normals', the default threshold 0.1) (both runs take the donor's
-// normal from the same fields).
+// kink_normal(edge's, donor_normals', a = dp_coarse / R_k = 2e-4 / 2e-3 = 0.1) (both runs take
+// the donor's normal from the same fields).
 // The lattice start (a square outline cut off by the circle) meets the face with kinks at t = 0:
 // there some buffer normals move (measured 8 of the 38 that donor_normals changes).
 TEST(VresBufferSurface, EdgeKinkBlendsOnlyWhereTheLevelsDisagree) {
   auto fields = [](const std::string& mode) {
     CaseSpec spec =
         load_case("droplet_vr_2d.toml", {"resolution.dp=2e-4", "fluid_block.0.fill=\"lattice\"",
+                                         "numerics.vres_kink_radius=0.002",
                                          "numerics.vres_buffer_surface=\"" + mode + "\""});
     Simulation<2> sim(spec);
     sim.update_surface_fields();
@@ -186,12 +187,12 @@ TEST(VresBufferSurface, KeysAreCheckedAndWrittenBack) {
   EXPECT_EQ(written_back(n).vres_buffer_surface, BufferSurface::donor_normals);
   const CaseSpec k = parse_text(with_numerics("vres_buffer_surface = \"edge_kink\"\n"));
   EXPECT_EQ(written_back(k).vres_buffer_surface, BufferSurface::edge_kink);
-  EXPECT_EQ(k.vres_kink_threshold, 0.1);
-  const CaseSpec a = parse_text(
-      with_numerics("vres_buffer_surface = \"edge_kink\"\nvres_kink_threshold = 0.05\n"));
-  EXPECT_EQ(written_back(a).vres_kink_threshold, 0.05);
-  expect_contains(error_of(with_numerics("vres_kink_threshold = 0\n")),
-                  {"numerics.vres_kink_threshold = 0", "(0, 0.5]"});
+  EXPECT_EQ(k.vres_kink_radius, 0.0) << "0: 10 dp of level 0";
+  const CaseSpec a =
+      parse_text(with_numerics("vres_buffer_surface = \"edge_kink\"\nvres_kink_radius = 0.002\n"));
+  EXPECT_EQ(written_back(a).vres_kink_radius, 0.002);
+  expect_contains(error_of(with_numerics("vres_kink_radius = -1\n")),
+                  {"numerics.vres_kink_radius = -1", "at least 0"});
   expect_contains(error_of(with_numerics("vres_shepard_fill = 3\n")),
                   {"numerics.vres_shepard_fill = 3", "[0, 2]"});
   const CaseSpec dflt = parse_text(kMinimal);

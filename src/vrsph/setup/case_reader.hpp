@@ -53,8 +53,8 @@ inline constexpr Check kBufferSpacing{[](double v) { return v >= 0.0 && v < 1.0;
                                       "must be in [0, 1) (dp of each level; 0: off)"};
 inline constexpr Check kFluxEdge{[](double v) { return v >= 0.0 && v < 1.0; },
                                  "must be in [0, 1) (a donor fill; 0: off)"};
-inline constexpr Check kKinkThreshold{[](double v) { return v > 0.0 && v <= 0.5; },
-                                      "must be in (0, 0.5] (a difference of unit normals)"};
+inline constexpr Check kKinkRadius{[](double v) { return v >= 0.0; },
+                                   "must be at least 0 (m; 0: 10 dp of level 0)"};
 inline constexpr Check kRefreshInterval{[](double v) { return v > 0.0 && v <= 8.0; },
                                         "must be in (0, 8] (capillary time-step limits)"};
 inline constexpr Check kUnitHalfOpen{[](double v) { return v > 0.0 && v <= 1.0; },

@@ -39,7 +39,7 @@ inline constexpr std::string_view kNumericsKeys[] = {"cfl",
                                                      "vres_shepard_fill",
                                                      "vres_buffer_spacing",
                                                      "vres_flux_edge",
-                                                     "vres_kink_threshold"};
+                                                     "vres_kink_radius"};
 // The model tables of [numerics] (usually written as inline tables).
 inline constexpr std::string_view kViscosityKeys[] = {"model", "alpha"};
 inline constexpr std::string_view kDiffusionKeys[] = {"model", "delta"};

@@ -174,7 +174,7 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
   number("vres_shepard_fill", kShepardFill, spec.vres_shepard_fill);
   number("vres_buffer_spacing", kBufferSpacing, spec.vres_buffer_spacing);
   number("vres_flux_edge", kFluxEdge, spec.vres_flux_edge);
-  number("vres_kink_threshold", kKinkThreshold, spec.vres_kink_threshold);
+  number("vres_kink_radius", kKinkRadius, spec.vres_kink_radius);
   spec.vres_buffer_surface =
       r.opt_enum("vres_buffer_surface", kBufferSurfaceNames).value_or(spec.vres_buffer_surface);
   n.hydrostatic_initial_density =

@@ -152,9 +152,9 @@ void write_numerics(Writer& w, const CaseSpec& s) {
   if (s.vres_buffer_surface != BufferSurface::edge)  // written only when not the default
     w.kv("vres_buffer_surface", toml_quote(enum_name(kBufferSurfaceNames, s.vres_buffer_surface)),
          "buffers' lambda and normal: own | edge | donor | donor_normals | edge_kink");
-  if (s.vres_buffer_surface == BufferSurface::edge_kink)  // read only by edge_kink
-    w.kv("vres_kink_threshold", num(s.vres_kink_threshold),
-         "|n_d - n_o| from which the donor's normal enters (whole from 3x)");
+  if (s.vres_kink_radius > 0.0)  // written only when set
+    w.kv("vres_kink_radius", num(s.vres_kink_radius),
+         "m; edge_kink's threshold on |n_d - n_o| is dp_coarse / this");
 }
 
 // [[fluid_block]] and [[wall_block]].

@@ -12,13 +12,14 @@
 // curvature's differences of neighbouring normals. So the donor's normal is taken only where it
 // disagrees with the own normal n_o by more than the noise of a surface that has no kink:
 //   s = clamp((|n_d - n_o| - a) / (b - a), 0, 1),   n = (n_o + s (n_d - n_o)) / |...|,
-// with b = 3a and a = numerics.vres_kink_threshold. Where either normal is zero (no surface by
-// that level's lambda) the own one stays. The noise of a smooth surface's normals scales with
-// dp / R (the normal turns by about dp_coarse / R between neighbours), a kink's turn does not:
-// measured on the VR drop (docs/validation.md, "A buffer normal that sees the kink"), a = 0.1
-// suits R / dp_coarse = 10 and a = 0.05 suits 20; about a = dp_coarse / R, while a lower a
-// switches on the noise of a smooth surface (drops at rest then get noisier) and a higher one lets
-// a kink grow before it is seen (the drop oscillates about it).
+// with b = 3a. Where either normal is zero (no surface by that level's lambda) the own one stays.
+// The noise of a smooth surface's normals scales with dp / R (the normal turns by about
+// dp_coarse / R between neighbours), a kink's turn does not, so a = dp_coarse / R_k, dp_coarse the
+// larger dp of the two levels and R_k = numerics.vres_kink_radius, the radius of curvature the
+// case resolves (default 10 dp of level 0). Measured on the VR drop (docs/validation.md, "A buffer
+// normal that sees the kink"): a = 0.1 at R / dp_coarse = 10 and a = 0.05 at 20, both a =
+// dp_coarse / R; 0.05 at R / dp_coarse = 10 switched on the noise of the smooth surface (the drop
+// at rest got noisier), 0.1 at 20 let the kink grow before it was seen (the drop oscillated).
 #pragma once
 
 #include <algorithm>

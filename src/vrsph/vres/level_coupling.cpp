@@ -1,5 +1,6 @@
 #include "vrsph/vres/level_coupling.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <type_traits>
 
@@ -84,7 +85,7 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
     if constexpr (std::is_same_v<T, Vec<D>>) {
       const double m = norm(v);
       v = m >= 0.5 ? v * (1.0 / m) : Vec<D>{};
-      if (inner) v = kink_normal(own[i], v, opt_.kink_threshold);
+      if (inner) v = kink_normal(own[i], v, std::max(L.prm.dp, dl.prm.dp) / opt_.kink_radius);
     }
     own[i] = v;
   });

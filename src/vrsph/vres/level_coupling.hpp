@@ -28,7 +28,7 @@ struct CouplingOptions {
   double shepard_fill = 0.0;                           // numerics.vres_shepard_fill
   double buffer_spacing = 0.0;  // numerics.vres_buffer_spacing, in dp of each level
   double flux_edge = 0.0;       // numerics.vres_flux_edge
-  double kink_threshold = 0.1;  // numerics.vres_kink_threshold
+  double kink_radius = 0.0;     // numerics.vres_kink_radius, resolved (> 0)
 };
 
 // The options as the case gives them.
@@ -42,7 +42,7 @@ inline CouplingOptions coupling_options(const CaseSpec& spec) {
           spec.vres_shepard_fill,
           spec.vres_buffer_spacing,
           spec.vres_flux_edge,
-          spec.vres_kink_threshold};
+          spec.vres_kink_radius > 0.0 ? spec.vres_kink_radius : 10.0 * spec.dp};
 }
 
 template <int D>
