@@ -162,24 +162,22 @@ void parse_numerics(const TableReader& r, CaseSpec& spec) {
   read_density_diffusion(r, n.density_diffusion);
   read_shifting(r, spec.dimension, n.shifting);
   read_surface_tension(r, n.surface_tension);
-  spec.vres_conserve_momentum =
-      r.opt_bool("vres_conserve_momentum").value_or(spec.vres_conserve_momentum);
+  auto flag = [&r](const char* key, bool& v) { v = r.opt_bool(key).value_or(v); };
   auto number = [&r](const char* key, const Check& c, double& v) {
     v = r.opt_number(key, c).value_or(v);
   };
+  flag("vres_conserve_momentum", spec.vres_conserve_momentum);
   number("vres_buffer_fill_min", kBelowHalf, spec.vres_buffer_fill_min);
   number("vres_buffer_ramp", kBufferRamp, spec.vres_buffer_ramp);
-  spec.vres_surface_across_levels =
-      r.opt_bool("vres_surface_across_levels").value_or(spec.vres_surface_across_levels);
+  flag("vres_surface_across_levels", spec.vres_surface_across_levels);
   number("vres_shepard_fill", kShepardFill, spec.vres_shepard_fill);
   number("vres_buffer_spacing", kBufferSpacing, spec.vres_buffer_spacing);
   number("vres_flux_edge", kFluxEdge, spec.vres_flux_edge);
   number("vres_kink_radius", kKinkRadius, spec.vres_kink_radius);
   spec.vres_buffer_surface =
       r.opt_enum("vres_buffer_surface", kBufferSurfaceNames).value_or(spec.vres_buffer_surface);
-  n.hydrostatic_initial_density =
-      r.opt_bool("hydrostatic_initial_density").value_or(n.hydrostatic_initial_density);
-  n.local_time_stepping = r.opt_bool("local_time_stepping").value_or(n.local_time_stepping);
+  flag("hydrostatic_initial_density", n.hydrostatic_initial_density);
+  flag("local_time_stepping", n.local_time_stepping);
   n.start_damping_time =
       r.opt_number("start_damping_time", kNonNegative).value_or(n.start_damping_time);
   n.start_damping_tau = r.opt_number("start_damping_tau", kPositive).value_or(n.start_damping_tau);
