@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "case_parser_fixtures.hpp"
@@ -68,6 +67,26 @@ TEST(VresBufferSurface, OwnSumsSeeTheShellEdgeAndTheExchangeRemovesIt) {
   EXPECT_LE(donor.largest_dev, edge.largest_dev + 1e-12);
 }
 
+// Every level's surface fields and particle kinds after update_surface_fields, for the VR drop at
+// dp 2e-4 with vres_buffer_surface = mode and the further overrides `sets`.
+struct LevelFields {
+  std::vector<SurfaceFields<2>> sf;
+  std::vector<std::vector<Kind>> kind;
+};
+LevelFields surface_fields_with(const std::string& mode, std::vector<std::string> sets = {}) {
+  sets.push_back("resolution.dp=2e-4");
+  sets.push_back("numerics.vres_buffer_surface=\"" + mode + "\"");
+  CaseSpec spec = load_case("droplet_vr_2d.toml", sets);
+  Simulation<2> sim(spec);
+  sim.update_surface_fields();
+  LevelFields out;
+  for (std::size_t l = 0; l < 2; ++l) {
+    out.sf.push_back(sim.surface_fields(l));
+    out.kind.push_back(sim.level(l).ps.kind);
+  }
+  return out;
+}
+
 // kink_normal with threshold a = 0.1: the own normal where the other level's differs from it by at
 // most a, the other level's from 3a on, a unit vector between the two in between; a zero normal
 // on either side leaves the own one.
@@ -93,24 +112,7 @@ TEST(VresBufferSurface, KinkNormalTakesTheDonorOnlyAtAKink) {
 // the shell, where "edge" keeps the level's own normal, some change (the surface particles of the
 // buffer next to the face, at both crossings of each level).
 TEST(VresBufferSurface, DonorNormalsChangeOnlyTheBufferNormals) {
-  struct Fields {
-    std::vector<SurfaceFields<2>> sf;
-    std::vector<std::vector<Kind>> kind;
-  };
-  auto fields = [](const std::string& mode) {
-    CaseSpec spec =
-        load_case("droplet_vr_2d.toml",
-                  {"resolution.dp=2e-4", "numerics.vres_buffer_surface=\"" + mode + "\""});
-    Simulation<2> sim(spec);
-    sim.update_surface_fields();
-    Fields out;
-    for (std::size_t l = 0; l < 2; ++l) {
-      out.sf.push_back(sim.surface_fields(l));
-      out.kind.push_back(sim.level(l).ps.kind);
-    }
-    return out;
-  };
-  const Fields e = fields("edge"), d = fields("donor_normals");
+  const LevelFields e = surface_fields_with("edge"), d = surface_fields_with("donor_normals");
   const auto& edge = e.sf;
   const auto& dn = d.sf;
   std::size_t changed = 0, buffers = 0;
@@ -141,27 +143,19 @@ TEST(VresBufferSurface, DonorNormalsChangeOnlyTheBufferNormals) {
 // The lattice start (a square outline cut off by the circle) meets the face with kinks at t = 0:
 // there some buffer normals move (measured 8 of the 38 that donor_normals changes).
 TEST(VresBufferSurface, EdgeKinkBlendsOnlyWhereTheLevelsDisagree) {
-  auto fields = [](const std::string& mode) {
-    CaseSpec spec =
-        load_case("droplet_vr_2d.toml", {"resolution.dp=2e-4", "fluid_block.0.fill=\"lattice\"",
-                                         "numerics.vres_kink_radius=0.002",
-                                         "numerics.vres_buffer_surface=\"" + mode + "\""});
-    Simulation<2> sim(spec);
-    sim.update_surface_fields();
-    std::vector<std::pair<SurfaceFields<2>, std::vector<Kind>>> out;
-    for (std::size_t l = 0; l < 2; ++l)
-      out.emplace_back(sim.surface_fields(l), sim.level(l).ps.kind);
-    return out;
-  };
-  const auto edge = fields("edge"), donor = fields("donor_normals"), kink = fields("edge_kink");
+  const std::vector<std::string> sets = {"fluid_block.0.fill=\"lattice\"",
+                                         "numerics.vres_kink_radius=0.002"};
+  const LevelFields edge = surface_fields_with("edge", sets);
+  const LevelFields donor = surface_fields_with("donor_normals", sets);
+  const LevelFields kink = surface_fields_with("edge_kink", sets);
   std::size_t moved = 0, differ = 0;
   for (std::size_t l = 0; l < 2; ++l) {
-    const std::vector<Kind>& kind = edge[l].second;
-    ASSERT_EQ(kink[l].second, kind);
+    const std::vector<Kind>& kind = edge.kind[l];
+    ASSERT_EQ(kink.kind[l], kind);
     for (std::size_t i = 0; i < kind.size(); ++i) {
-      const Vec<2> e = edge[l].first.normal[i], d = donor[l].first.normal[i];
-      const Vec<2> k = kink[l].first.normal[i];
-      EXPECT_EQ(kink[l].first.lambda[i], edge[l].first.lambda[i]);
+      const Vec<2> e = edge.sf[l].normal[i], d = donor.sf[l].normal[i];
+      const Vec<2> k = kink.sf[l].normal[i];
+      EXPECT_EQ(kink.sf[l].lambda[i], edge.sf[l].lambda[i]);
       const Vec<2> want = kind[i] == Kind::buffer ? kink_normal(e, d, 0.1) : e;
       EXPECT_TRUE(k[0] == want[0] && k[1] == want[1]) << "level " << l << ", particle " << i;
       if (kind[i] != Kind::buffer) continue;

@@ -135,10 +135,9 @@ struct CaseSpec {
   double vres_buffer_ramp = 0.0;        // dp: buffer volumes ramp to 0 over this at the outer edge
   bool vres_surface_across_levels = false;  // surface passes over the fluid of both levels
   BufferSurface vres_buffer_surface = BufferSurface::edge;  // buffers' lambda and normal
-  double vres_shepard_fill = 0.0;  // below this donor fill, buffers take Shepard averages
-  double vres_flux_edge = 0.0;     // below this donor fill, mass points pass their flux inward
-  double vres_kink_radius =
-      0.0;  // edge_kink: radius of curvature resolved (m); 0: 10 dp of level 0
+  double vres_shepard_fill = 0.0;    // below this donor fill, buffers take Shepard averages
+  double vres_flux_edge = 0.0;       // below this donor fill, mass points pass their flux inward
+  double vres_kink_radius = 0.0;     // edge_kink's R_k (m), threshold dp / R_k; 0: 10 dp of level 0
   double vres_buffer_spacing = 0.0;  // buffer particles kept this many dp apart (0: off)
 
   // geometry
