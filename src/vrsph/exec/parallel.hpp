@@ -23,6 +23,17 @@ inline void for_each(std::int64_t n, Body&& body) {
   for (std::int64_t i = 0; i < n; ++i) body(i);
 }
 
+// body(a, b) for consecutive ranges [a, b) of at most `block` indices covering [0, n), in equal
+// static shares: cheap per-particle loops written over a range with raw pointers, so that the
+// compiler vectorises them (a body per index through vector members reloads their pointers
+// after every store and stays scalar).
+template <class Body>
+inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
+  const std::int64_t blocks = (n + block - 1) / block;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t r = 0; r < blocks; ++r) body(r * block, std::min(n, (r + 1) * block));
+}
+
 // body(i) for every i in [0, n), handed out in chunks of `chunk` consecutive indices: neighbour
 // passes, whose cost varies per particle. Consecutive indices share cells after the sort.
 template <class Body>

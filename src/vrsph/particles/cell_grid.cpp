@@ -43,34 +43,55 @@ CellGrid<D>::CellGrid(const Vec<D>& domain_min, const Vec<D>& domain_max, double
 }
 
 namespace {
-// The occupied cell range, merged over threads: minima and maxima, the same for any thread count.
-struct CellBounds {
-  static constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
-  static constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
-  std::array<std::int64_t, 3> lo{kMax, kMax, kMax};
-  std::array<std::int64_t, 3> hi{kMin, kMin, kMin};
-  void merge(const CellBounds& o) {
+// The extent of the particles inside the domain, merged over threads: minima and maxima of each
+// coordinate, the same for any thread count. NaN coordinates count as outside.
+struct Extent {
+  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::array<double, 3> lo{kInf, kInf, kInf};
+  std::array<double, 3> hi{-kInf, -kInf, -kInf};
+  void merge(const Extent& o) {
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], o.lo[k]), hi[k] = std::max(hi[k], o.hi[k]);
   }
 };
 struct NoScratch {};
+// Particles per range of fit_to's loop.
+constexpr std::int64_t kExtentRange = 4096;
 }  // namespace
 
 // Lays the cell table over the cells the particles occupy now (plus `reach` ghost cells), so
 // the table, and the cost of clearing and scanning it, follows the particles, not the domain.
+// A cell coordinate is a non-decreasing function of the position (cell_coord), so the occupied
+// cells run from the cell of the smallest coordinate to that of the largest: one vectorised
+// minimum and maximum over the positions instead of a cell per particle.
 template <int D>
 void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
-  const CellBounds b = exec::for_each_gather<NoScratch, CellBounds>(
-      static_cast<std::int64_t>(ps.size()), 1024, [&](std::int64_t i, NoScratch&, CellBounds& acc) {
-        const auto& x = ps.pos[i];
-        if (!inside(x)) return;
-        for (int k = 0; k < D; ++k) {
-          const std::int64_t c = cell_coord(x, k);
-          acc.lo[k] = std::min(acc.lo[k], c), acc.hi[k] = std::max(acc.hi[k], c);
+  const auto n = static_cast<std::int64_t>(ps.size());
+  const Extent e = exec::for_each_gather<NoScratch, Extent>(
+      (n + kExtentRange - 1) / kExtentRange, 1, [&](std::int64_t r, NoScratch&, Extent& acc) {
+        const Vec<D>* __restrict x = ps.pos.data();
+        double lo[D], hi[D], a[D], b[D];
+        for (int k = 0; k < D; ++k) lo[k] = Extent::kInf, hi[k] = -Extent::kInf;
+        for (int k = 0; k < D; ++k) a[k] = min_[k], b[k] = max_[k];
+        const std::int64_t end = std::min(n, (r + 1) * kExtentRange);
+        for (std::int64_t q = r * kExtentRange; q < end; ++q) {
+          bool in = true;  // inside(): `&` keeps the loop free of branches
+          for (int k = 0; k < D; ++k) in = in & (x[q][k] >= a[k]) & (x[q][k] <= b[k]);
+          for (int k = 0; k < D; ++k) {
+            lo[k] = in & (x[q][k] < lo[k]) ? x[q][k] : lo[k];
+            hi[k] = in & (x[q][k] > hi[k]) ? x[q][k] : hi[k];
+          }
         }
+        Extent mine;
+        for (int k = 0; k < D; ++k) mine.lo[k] = lo[k], mine.hi[k] = hi[k];
+        acc.merge(mine);
       });
+  const bool any = e.lo[0] <= e.hi[0];
   std::array<std::int64_t, 3> lo{0, 0, 0}, hi{0, 0, 0};  // axes beyond D stay at 0
-  for (int k = 0; k < D; ++k) lo[k] = b.lo[k], hi[k] = b.hi[k];
+  for (int k = 0; k < D && any; ++k) {
+    Vec<D> x_lo, x_hi;
+    x_lo[k] = e.lo[k], x_hi[k] = e.hi[k];
+    lo[k] = cell_coord(x_lo, k), hi[k] = cell_coord(x_hi, k);
+  }
   ncell_total_ = 1;
   for (int k = 0; k < D; ++k) {
     if (hi[k] < lo[k]) lo[k] = hi[k] = 0;  // no particle inside

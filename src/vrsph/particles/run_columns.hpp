@@ -78,6 +78,21 @@ struct RunColumns {
     }
   }
 
+  // Writes the positions of particles a..b-1 from x (put_position over a range, vectorised).
+  void put_positions(const Vec<D>* __restrict x, std::size_t a, std::size_t b) {
+    for (int k = 0; k < D; ++k) {
+      T* __restrict hi = col[k].data();
+      T* __restrict lo = kSplit ? col[kLo + k].data() : nullptr;
+      const double o = origin[k];
+      for (std::size_t q = a; q < b; ++q) {
+        const double rel = x[q][k] - o;
+        const T h = static_cast<T>(rel);
+        hi[q] = h;
+        if constexpr (kSplit) lo[q] = static_cast<T>(rel - static_cast<double>(h));
+      }
+    }
+  }
+
   // x_i in the columns' frame: hi[k] + lo[k] (lo = 0 with T = double).
   void self(std::uint32_t q, T (&hi)[3], T (&lo)[3]) const {
     for (int k = 0; k < 3; ++k) hi[k] = lo[k] = T(0);

@@ -30,12 +30,14 @@ struct TaitEos {
       : rho0(rho0_), gamma(gamma_), c0(c0_), b(c0_ * c0_ * rho0_ / gamma_) {}
 
   double pressure(double rho) const {
+    if (gamma == 7.0) return pressure_gamma7(rho);  // exact, several times cheaper than std::pow
+    return b * (std::pow(rho / rho0, gamma) - 1.0);
+  }
+  // pressure() where gamma is 7, without the test (for loops that test once).
+  double pressure_gamma7(double rho) const {
     const double ratio = rho / rho0;
-    if (gamma == 7.0) {  // exact, and several times cheaper than std::pow
-      const double r2 = ratio * ratio;
-      return b * (r2 * r2 * r2 * ratio - 1.0);
-    }
-    return b * (std::pow(ratio, gamma) - 1.0);
+    const double r2 = ratio * ratio;
+    return b * (r2 * r2 * r2 * ratio - 1.0);
   }
 
   // Inverse: the density at which the EOS gives pressure p.

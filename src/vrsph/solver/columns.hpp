@@ -91,6 +91,54 @@ struct LevelColumns {
     return weight.empty() ? x : weight[static_cast<std::size_t>(i)] * x;
   }
 
+  // Particles per range of the packing loops (exec::for_each_range): a few pages of each column.
+  static constexpr std::int64_t kPackRange = 2048;
+
+  // vol[q] = omega_q m_q / rho_q for q in [a, b) (weighted), rounded to T.
+  template <class T>
+  void pack_volumes(const ParticleSet<D>& ps, T* __restrict vol, std::size_t a,
+                    std::size_t b) const {
+    const double* __restrict rho = ps.rho.data();
+    const double* __restrict w = weight.empty() ? nullptr : weight.data();
+    if (ps.keeps_mass) {
+      const double* __restrict m = ps.mass.data();
+      if (w != nullptr) {
+        for (std::size_t q = a; q < b; ++q) vol[q] = static_cast<T>(w[q] * (m[q] / rho[q]));
+      } else {
+        for (std::size_t q = a; q < b; ++q) vol[q] = static_cast<T>(m[q] / rho[q]);
+      }
+      return;
+    }
+    const double m = ps.mass_each;
+    if (w != nullptr) {
+      for (std::size_t q = a; q < b; ++q) vol[q] = static_cast<T>(w[q] * (m / rho[q]));
+    } else {
+      for (std::size_t q = a; q < b; ++q) vol[q] = static_cast<T>(m / rho[q]);
+    }
+  }
+
+  // out[q] = component k of v[q], rounded to T.
+  template <class T>
+  static void pack_component(const Vec<D>* __restrict v, int k, T* __restrict out, std::size_t a,
+                             std::size_t b) {
+    for (std::size_t q = a; q < b; ++q) out[q] = static_cast<T>(v[q][k]);
+  }
+
+  // The density as its deviation rho - rho0 (exact, Sterbenz, while rho0 / 2 <= rho <= 2 rho0)
+  // and the pressure from the EOS, rounded to T.
+  template <class T>
+  static void pack_density(const double* __restrict rho, const TaitEos& eos, T* __restrict dev,
+                           T* __restrict p, std::size_t a, std::size_t b) {
+    const double rho0 = eos.rho0;
+    for (std::size_t q = a; q < b; ++q) dev[q] = static_cast<T>(rho[q] - rho0);
+    if (eos.gamma == 7.0) {  // the branch of TaitEos::pressure, out of the loop
+      const TaitEos seven = eos;
+      for (std::size_t q = a; q < b; ++q) p[q] = static_cast<T>(seven.pressure_gamma7(rho[q]));
+    } else {
+      for (std::size_t q = a; q < b; ++q) p[q] = static_cast<T>(eos.pressure(rho[q]));
+    }
+  }
+
   static void check_sorted(const ParticleSet<D>& ps, const CellGrid<D>& grid) {
     if (grid.group_end(Group::wall) != ps.size())
       throw std::logic_error("LevelColumns: the particles changed since the grid's sort");
@@ -112,20 +160,22 @@ struct LevelColumns {
       for (int k = C::v; k < C::count; ++k) absent[k] = k != C::vol;
     }
     st.lay_out(grid, absent, alias);
-    const std::size_t n = ps.size();
+    const auto n = static_cast<std::int64_t>(ps.size());
     const bool buffers = has_wall_vol && !kGeometry;
-    exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-      st.put_position(i, ps.pos[i]);
-      const double vol_i = weighted(i, ps.mass_of(i) / ps.rho[i]);
-      st.col[C::vol][i] = static_cast<T>(vol_i);
+    exec::for_each_range(n, kPackRange, [&](std::int64_t a, std::int64_t b) {
+      const auto qa = static_cast<std::size_t>(a), qb = static_cast<std::size_t>(b);
+      st.put_positions(ps.pos.data(), qa, qb);
+      pack_volumes(ps, st.col[C::vol].data(), qa, qb);
       if constexpr (kGeometry) return;
-      for (int k = 0; k < D; ++k) st.col[C::v + k][i] = static_cast<T>(ps.vel[i][k]);
-      // exact (Sterbenz) while rho0 / 2 <= rho <= 2 rho0
-      st.col[C::rho][i] = static_cast<T>(ps.rho[i] - eos.rho0);
-      st.col[C::p][i] = static_cast<T>(eos.pressure(ps.rho[i]));
-      if (buffers)
-        st.col[C::wall_vol][i] =
-            static_cast<T>(wall_continuity_volume(vol_i, ps.kind[i] == Kind::buffer));
+      for (int k = 0; k < D; ++k) pack_component(ps.vel.data(), k, st.col[C::v + k].data(), qa, qb);
+      pack_density(ps.rho.data(), eos, st.col[C::rho].data(), st.col[C::p].data(), qa, qb);
+      if (buffers) {
+        T* __restrict wall_vol = st.col[C::wall_vol].data();
+        const T* __restrict vol = st.col[C::vol].data();
+        for (std::size_t q = qa; q < qb; ++q)
+          wall_vol[q] = static_cast<T>(
+              wall_continuity_volume(static_cast<double>(vol[q]), ps.kind[q] == Kind::buffer));
+      }
     });
     const T* vol_col = st.col[C::vol].data();
     // padded as the state's columns (particles/run_columns.hpp)
