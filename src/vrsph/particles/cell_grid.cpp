@@ -54,8 +54,9 @@ struct Extent {
   }
 };
 struct NoScratch {};
-// Particles per range of fit_to's loop.
+// Particles per range of fit_to's loop and of the sort's cell loops.
 constexpr std::int64_t kExtentRange = 4096;
+constexpr std::int64_t kCellRange = 2048;
 }  // namespace
 
 // Lays the cell table over the cells the particles occupy now (plus `reach` ghost cells), so
@@ -107,6 +108,30 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
         ncell_total_, cell_size_));
   }
   stride_ = {1, n_[0], n_[0] * n_[1]};
+}
+
+// cell_of for a range: floor(a) - lo_k is exact in double (two integers below 2^53), equal to the
+// truncation cell_coord takes for a >= 0, and clamped to the table before it becomes an integer.
+template <int D>
+void CellGrid<D>::table_cells(const Vec<D>* __restrict x, std::size_t a, std::size_t b,
+                              std::uint32_t* __restrict out) const {
+  double o[D], lo[D], top[D];
+  std::uint32_t stride[D];
+  for (int k = 0; k < D; ++k) {
+    o[k] = origin_[k], lo[k] = static_cast<double>(lo_[k]);
+    top[k] = static_cast<double>(n_[k] - 1);
+    stride[k] = static_cast<std::uint32_t>(stride_[k]);  // the table holds under 2^31 cells
+  }
+  const double inv = inv_cell_;
+  for (std::size_t q = a; q < b; ++q) {
+    std::uint32_t c = 0;
+    for (int k = 0; k < D; ++k) {
+      double t = std::floor((x[q][k] - o[k]) * inv) - lo[k];
+      t = std::min(std::max(t, 0.0), top[k]);
+      c += static_cast<std::uint32_t>(static_cast<std::int32_t>(t)) * stride[k];
+    }
+    out[q] = c;
+  }
 }
 
 template <int D>
@@ -209,9 +234,12 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copie
   fit_to(ps);
   std::vector<std::uint64_t> lost;
   pcell_.resize(n);
-  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
-    pcell_[i] = inside(ps.pos[i]) ? key(cell_of(ps.pos[i]), ps.kind[i]) : KeySort::kDropped;
-  });
+  exec::for_each_range(
+      static_cast<std::int64_t>(n), kCellRange, [&](std::int64_t a, std::int64_t b) {
+        table_cells(ps.pos.data(), a, b, pcell_.data());
+        for (std::int64_t i = a; i < b; ++i)
+          pcell_[i] = inside(ps.pos[i]) ? key(pcell_[i], ps.kind[i]) : KeySort::kDropped;
+      });
   keysort_.sort(pcell_, 2 * static_cast<std::size_t>(ncell_total_), starts_, perm_, dropped_);
   for (std::uint32_t i : dropped_) lost.push_back(ps.id[i]);
   const std::size_t kept = perm_.size();
@@ -251,9 +279,9 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copie
   // The cell of each particle in its new place, from its position (the same function that gave
   // its key: no gather of the keys through the permutation).
   pcell_.resize(kept);
-  exec::for_each(static_cast<std::int64_t>(kept), [&](std::int64_t i) {
-    pcell_[i] = static_cast<std::uint32_t>(cell_of(ps.pos[i]));
-  });
+  exec::for_each_range(
+      static_cast<std::int64_t>(kept), kCellRange,
+      [&](std::int64_t a, std::int64_t b) { table_cells(ps.pos.data(), a, b, pcell_.data()); });
   return lost;
 }
 

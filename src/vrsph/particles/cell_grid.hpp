@@ -81,7 +81,18 @@ class CellGrid {
   // cell c (c from particle_cells(), i.e. without the group offset).
   template <class Fn>
   void for_each_run(std::int64_t c, Group g, Fn&& fn) const {
-    for_each_row(c, g, -reach_, reach_, fn);
+    auto run = [&](std::uint32_t b, std::uint32_t e, std::int64_t) { fn(b, e); };
+    for_each_row(c, g, -reach_, reach_, run);
+  }
+  // for_each_run with the end of each run's row of the table: fn(begin, end, row_end), row_end
+  // the first cell (as particle_cells() numbers them) past the row.
+  template <class Fn>
+  void for_each_run_in_row(std::int64_t c, Group g, Fn&& fn) const {
+    const std::int64_t past_row_of_c = c - c % n_[0] + n_[0];
+    auto run = [&](std::uint32_t b, std::uint32_t e, std::int64_t offset) {
+      fn(b, e, past_row_of_c + offset);
+    };
+    for_each_row(c, g, -reach_, reach_, run);
   }
 
   // Calls fn(begin, end) for runs of particles of group g that hold every particle within
@@ -117,7 +128,8 @@ class CellGrid {
   template <class Fn>
   void for_each_block_run(std::int64_t c0, Group g, Fn&& fn) const {
     const auto [lo, hi] = block_row_span(c0);
-    for_each_row(c0, g, lo, hi, fn);
+    auto run = [&](std::uint32_t b, std::uint32_t e, std::int64_t) { fn(b, e); };
+    for_each_row(c0, g, lo, hi, run);
   }
 
   // Per-cell reductions over a block's stencil (solver/normal_bound.hpp): the particles of
@@ -159,20 +171,21 @@ class CellGrid {
   const Vec<D>& domain_max() const { return max_; }
 
  private:
-  // fn(begin, end) for the cells c + lo .. c + hi of every row of the stencil around cell c.
+  // fn(begin, end, offset) for the cells c + offset + lo .. c + offset + hi of every row of the
+  // stencil around cell c, offset the row's distance from c's row in cells.
   template <class Fn>
   void for_each_row(std::int64_t c, Group g, std::int64_t lo, std::int64_t hi, Fn& fn) const {
     c += static_cast<std::int64_t>(g) * ncell_total_;
     if constexpr (D == 2) {
       for (int dy = -reach_; dy <= reach_; ++dy) {
-        const std::int64_t row = c + dy * stride_[1];
-        fn(starts_[row + lo], starts_[row + hi + 1]);
+        const std::int64_t offset = dy * stride_[1], row = c + offset;
+        fn(starts_[row + lo], starts_[row + hi + 1], offset);
       }
     } else {
       for (int dz = -reach_; dz <= reach_; ++dz) {
         for (int dy = -reach_; dy <= reach_; ++dy) {
-          const std::int64_t row = c + dy * stride_[1] + dz * stride_[2];
-          fn(starts_[row + lo], starts_[row + hi + 1]);
+          const std::int64_t offset = dy * stride_[1] + dz * stride_[2], row = c + offset;
+          fn(starts_[row + lo], starts_[row + hi + 1], offset);
         }
       }
     }
@@ -184,6 +197,11 @@ class CellGrid {
     const double a = (x[k] - origin_[k]) * inv_cell_;
     return static_cast<std::int64_t>(a >= 0.0 ? a : std::floor(a));
   }
+  // The table cells of x[a..b) (cell_of) into out, in a loop the compiler vectorises: exact for
+  // positions inside the table (every particle inside the domain after fit_to), clamped to it
+  // for the others.
+  void table_cells(const Vec<D>* __restrict x, std::size_t a, std::size_t b,
+                   std::uint32_t* __restrict out) const;
   void fit_to(const ParticleSet<D>& ps);
   // Whether every particle of ps is still in the cell the last sort gave it (none created or
   // deleted since). Then the occupied cells, and so the table fit_to would lay, are the same too.

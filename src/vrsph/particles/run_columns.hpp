@@ -117,12 +117,12 @@ int stencil_spans(const CellGrid<D>& grid, std::int64_t c, Group g, Span* spans)
   int n = 0;
   const auto& cell = grid.particle_cells();
   const std::uint32_t end = grid.group_end(g);
-  const auto row = static_cast<std::uint32_t>(grid.row_length());
-  grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) {
+  grid.for_each_run_in_row(c, g, [&](std::uint32_t b, std::uint32_t e, std::int64_t row_end) {
     if (e <= b) return;
     constexpr auto P = static_cast<std::uint32_t>(kBlockPad);
     const std::uint32_t len = (e - b + P - 1) / P * P, last = b + len - 1;
-    const bool same_row = last < end && cell[last] / row == cell[e - 1] / row;
+    // cells are sorted: cell[last] >= cell[e - 1], in the run's row while before its end
+    const bool same_row = last < end && cell[last] < row_end;
     spans[n++] = {static_cast<std::ptrdiff_t>(b), static_cast<std::ptrdiff_t>(len),
                   static_cast<std::ptrdiff_t>(same_row ? len : e - b)};
   });
