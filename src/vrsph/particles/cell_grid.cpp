@@ -113,7 +113,7 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
 // cell_of for a range: floor(a) - lo_k is exact in double (two integers below 2^53), equal to the
 // truncation cell_coord takes for a >= 0, and clamped to the table before it becomes an integer.
 template <int D>
-void CellGrid<D>::table_cells(const Vec<D>* __restrict x, std::size_t a, std::size_t b,
+void CellGrid<D>::table_cells(const Vec<D>* __restrict x, std::size_t count,
                               std::uint32_t* __restrict out) const {
   double o[D], lo[D], top[D];
   std::uint32_t stride[D];
@@ -123,7 +123,7 @@ void CellGrid<D>::table_cells(const Vec<D>* __restrict x, std::size_t a, std::si
     stride[k] = static_cast<std::uint32_t>(stride_[k]);  // the table holds under 2^31 cells
   }
   const double inv = inv_cell_;
-  for (std::size_t q = a; q < b; ++q) {
+  for (std::size_t q = 0; q < count; ++q) {
     std::uint32_t c = 0;
     for (int k = 0; k < D; ++k) {
       double t = std::floor((x[q][k] - o[k]) * inv) - lo[k];
@@ -207,17 +207,18 @@ bool CellGrid<D>::unmoved_since_sort(const ParticleSet<D>& ps) const {
   // part of the table (particles created and deleted in equal numbers since the sort shift the
   // indices) is not where the table puts it, even where its cell is.
   const std::int64_t walls_from = starts_[static_cast<std::size_t>(ncell_total_)];
-  return !exec::any_of(static_cast<std::int64_t>(ps.size()), 1024, [&](std::int64_t i) {
-    if ((ps.kind[i] == Kind::wall) != (i >= walls_from)) return true;
-    const Vec<D>& x = ps.pos[i];
-    if (!inside(x)) return true;
-    std::int64_t c = 0;
-    for (int k = 0; k < D; ++k) {
-      const std::int64_t ck = cell_coord(x, k) - lo_[k];
-      if (ck < 0 || ck >= n_[k]) return true;  // off the table: not the cell it had
-      c += ck * stride_[k];
+  // A particle off the table gets a ghost cell from table_cells, never the cell it was sorted in.
+  const auto n = static_cast<std::int64_t>(ps.size());
+  return !exec::any_of((n + kCellRange - 1) / kCellRange, 1, [&](std::int64_t r) {
+    const std::int64_t a = r * kCellRange, b = std::min(n, a + kCellRange);
+    std::uint32_t cell[kCellRange];
+    table_cells(ps.pos.data() + a, static_cast<std::size_t>(b - a), cell);
+    bool moved = false;
+    for (std::int64_t i = a; i < b; ++i) {
+      const bool group_moved = (ps.kind[i] == Kind::wall) != (i >= walls_from);
+      moved = moved | group_moved | !inside(ps.pos[i]) | (cell[i - a] != pcell_[i]);
     }
-    return c != static_cast<std::int64_t>(pcell_[i]);
+    return moved;
   });
 }
 
@@ -236,7 +237,7 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copie
   pcell_.resize(n);
   exec::for_each_range(
       static_cast<std::int64_t>(n), kCellRange, [&](std::int64_t a, std::int64_t b) {
-        table_cells(ps.pos.data(), a, b, pcell_.data());
+        table_cells(ps.pos.data() + a, b - a, pcell_.data() + a);
         for (std::int64_t i = a; i < b; ++i)
           pcell_[i] = inside(ps.pos[i]) ? key(pcell_[i], ps.kind[i]) : KeySort::kDropped;
       });
@@ -279,9 +280,10 @@ std::vector<std::uint64_t> CellGrid<D>::sort(ParticleSet<D>& ps, bool step_copie
   // The cell of each particle in its new place, from its position (the same function that gave
   // its key: no gather of the keys through the permutation).
   pcell_.resize(kept);
-  exec::for_each_range(
-      static_cast<std::int64_t>(kept), kCellRange,
-      [&](std::int64_t a, std::int64_t b) { table_cells(ps.pos.data(), a, b, pcell_.data()); });
+  exec::for_each_range(static_cast<std::int64_t>(kept), kCellRange,
+                       [&](std::int64_t a, std::int64_t b) {
+                         table_cells(ps.pos.data() + a, b - a, pcell_.data() + a);
+                       });
   return lost;
 }
 

@@ -197,10 +197,10 @@ class CellGrid {
     const double a = (x[k] - origin_[k]) * inv_cell_;
     return static_cast<std::int64_t>(a >= 0.0 ? a : std::floor(a));
   }
-  // The table cells of x[a..b) (cell_of) into out, in a loop the compiler vectorises: exact for
-  // positions inside the table (every particle inside the domain after fit_to), clamped to it
-  // for the others.
-  void table_cells(const Vec<D>* __restrict x, std::size_t a, std::size_t b,
+  // The table cells of x[0..count) (cell_of) into out, in a loop the compiler vectorises: exact
+  // for positions inside the table (every particle inside the domain after fit_to), clamped to
+  // it for the others (which then land in a ghost cell, where no particle was sorted).
+  void table_cells(const Vec<D>* __restrict x, std::size_t count,
                    std::uint32_t* __restrict out) const;
   void fit_to(const ParticleSet<D>& ps);
   // Whether every particle of ps is still in the cell the last sort gave it (none created or
