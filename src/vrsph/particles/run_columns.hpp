@@ -68,17 +68,8 @@ struct RunColumns {
     for (int k = 0; k < K; ++k) base[k] = col[absent[k] ? alias[k] : k].data();
   }
 
-  // Writes the position of particle q.
-  void put_position(std::size_t q, const Vec<D>& x) {
-    for (int k = 0; k < D; ++k) {
-      const double rel = x[k] - origin[k];
-      const T hi = static_cast<T>(rel);
-      col[k][q] = hi;
-      if constexpr (kSplit) col[kLo + k][q] = static_cast<T>(rel - static_cast<double>(hi));
-    }
-  }
-
-  // Writes the positions of particles a..b-1 from x (put_position over a range, vectorised).
+  // Writes the positions of particles a..b-1 from x, relative to the origin (hi + lo with T =
+  // float), one axis at a time so that the loop vectorises.
   void put_positions(const Vec<D>* __restrict x, std::size_t a, std::size_t b) {
     for (int k = 0; k < D; ++k) {
       T* __restrict hi = col[k].data();

@@ -87,10 +87,6 @@ struct LevelColumns {
   }
 
  private:
-  double weighted(std::int64_t i, double x) const {
-    return weight.empty() ? x : weight[static_cast<std::size_t>(i)] * x;
-  }
-
   // Particles per range of the packing loops (exec::for_each_range): a few pages of each column.
   static constexpr std::int64_t kPackRange = 2048;
 
