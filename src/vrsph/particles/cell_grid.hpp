@@ -84,16 +84,20 @@ class CellGrid {
     auto run = [&](std::uint32_t b, std::uint32_t e, std::int64_t) { fn(b, e); };
     for_each_row(c, g, -reach_, reach_, run);
   }
-  // for_each_run with the end of each run's row of the table: fn(begin, end, row_end), row_end
-  // the first cell (as particle_cells() numbers them) past the row.
+  // fn(past) for each row of the stencil around cell c, in for_each_run's order: past, the first
+  // particle of group g beyond the row's last cell of the table (the group's end for the table's
+  // last row). The same for every cell of c's row of the table.
   template <class Fn>
-  void for_each_run_in_row(std::int64_t c, Group g, Fn&& fn) const {
-    const std::int64_t past_row_of_c = c - c % n_[0] + n_[0];
-    auto run = [&](std::uint32_t b, std::uint32_t e, std::int64_t offset) {
-      fn(b, e, past_row_of_c + offset);
+  void for_each_row_end(std::int64_t c, Group g, Fn&& fn) const {
+    const std::int64_t next_row = c - c % n_[0] + n_[0] - c;  // from c to the next row's start
+    auto run = [&](std::uint32_t, std::uint32_t, std::int64_t offset) {
+      fn(static_cast<std::uint32_t>(
+          starts_[static_cast<std::int64_t>(g) * ncell_total_ + c + offset + next_row]));
     };
-    for_each_row(c, g, -reach_, reach_, run);
+    for_each_row(c, g, 0, -1, run);
   }
+  // The first cell of c's row of the table.
+  std::int64_t row_first(std::int64_t c) const { return c - c % n_[0]; }
 
   // Calls fn(begin, end) for runs of particles of group g that hold every particle within
   // `radius` of x, for any radius (also beyond the stencil's reach) and any x: the rows of cells

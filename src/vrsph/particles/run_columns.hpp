@@ -98,24 +98,39 @@ struct RunColumns {
 template <int D>
 inline constexpr int kMaxSpans = D == 2 ? 9 : 81;
 
-// The spans of cell c's stencil in group g (CellGrid::for_each_run); returns their number
-// (empty runs are left out). `spans` holds kMaxSpans<D> entries. A span whose candidates read
-// past its run all lie further along the run's row of cells (beyond the stencil's box, so their
-// kernel terms are zero) counts every candidate it reads (valid = len): no mask. The others,
-// whose reads reach the next row or the group's end, are masked to the run.
+// The first particle past each row of the stencils of one row of the table's cells, in group g
+// (CellGrid::for_each_row_end): the same for every cell of that row, so kept while consecutive
+// cells stay in it. Reading it from the cell table's starts where a row changes replaces a read
+// of the particle cells per run, which missed the cache (docs/validation.md).
 template <int D>
-int stencil_spans(const CellGrid<D>& grid, std::int64_t c, Group g, Span* spans) {
-  int n = 0;
-  const auto& cell = grid.particle_cells();
-  const std::uint32_t end = grid.group_end(g);
-  grid.for_each_run_in_row(c, g, [&](std::uint32_t b, std::uint32_t e, std::int64_t row_end) {
+struct RowEnds {
+  std::int64_t first = -1, last = -2;  // the table row's cells they hold for
+  std::uint32_t past[kMaxSpans<D>] = {};
+  void of(const CellGrid<D>& grid, std::int64_t c, Group g) {
+    if (c >= first && c <= last) return;
+    first = grid.row_first(c), last = first + grid.row_length() - 1;
+    int r = 0;
+    grid.for_each_row_end(c, g, [&](std::uint32_t p) { past[r++] = p; });
+  }
+};
+
+// The spans of cell c's stencil in group g (CellGrid::for_each_run); returns their number
+// (empty runs are left out). `spans` holds kMaxSpans<D> entries; `ends` the rows' ends of group
+// g. A span whose candidates read past its run all lie further along the run's row of cells
+// (beyond the stencil's box, so their kernel terms are zero) counts every candidate it reads
+// (valid = len): no mask. The others, whose reads reach the next row or the group's end, are
+// masked to the run.
+template <int D>
+int stencil_spans(const CellGrid<D>& grid, std::int64_t c, Group g, RowEnds<D>& ends, Span* spans) {
+  ends.of(grid, c, g);
+  int n = 0, r = 0;
+  grid.for_each_run(c, g, [&](std::uint32_t b, std::uint32_t e) {
+    const std::uint32_t past = ends.past[r++];  // particles in [e, past) lie in the run's row
     if (e <= b) return;
     constexpr auto P = static_cast<std::uint32_t>(kBlockPad);
     const std::uint32_t len = (e - b + P - 1) / P * P, last = b + len - 1;
-    // cells are sorted: cell[last] >= cell[e - 1], in the run's row while before its end
-    const bool same_row = last < end && cell[last] < row_end;
     spans[n++] = {static_cast<std::ptrdiff_t>(b), static_cast<std::ptrdiff_t>(len),
-                  static_cast<std::ptrdiff_t>(same_row ? len : e - b)};
+                  static_cast<std::ptrdiff_t>(last < past ? len : e - b)};
   });
   return n;
 }
@@ -128,13 +143,14 @@ struct StencilSpans {
   Groups groups = Groups::fluid;
   int count = 0;
   Span span[2 * kMaxSpans<D>];
+  RowEnds<D> fluid_ends, wall_ends;
   void of(const CellGrid<D>& grid, std::int64_t c, Groups g) {
     if (c == cell && g == groups) return;
     cell = c, groups = g, count = 0;
     if (static_cast<int>(g) & static_cast<int>(Groups::fluid))
-      count += stencil_spans(grid, c, Group::fluid, span + count);
+      count += stencil_spans(grid, c, Group::fluid, fluid_ends, span + count);
     if (static_cast<int>(g) & static_cast<int>(Groups::wall))
-      count += stencil_spans(grid, c, Group::wall, span + count);
+      count += stencil_spans(grid, c, Group::wall, wall_ends, span + count);
   }
 };
 
