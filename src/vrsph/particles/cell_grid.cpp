@@ -70,20 +70,35 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
   const Extent e = exec::for_each_gather<NoScratch, Extent>(
       (n + kExtentRange - 1) / kExtentRange, 1, [&](std::int64_t r, NoScratch&, Extent& acc) {
         const Vec<D>* __restrict x = ps.pos.data();
-        double lo[D], hi[D], a[D], b[D];
-        for (int k = 0; k < D; ++k) lo[k] = Extent::kInf, hi[k] = -Extent::kInf;
-        for (int k = 0; k < D; ++k) a[k] = min_[k], b[k] = max_[k];
-        const std::int64_t end = std::min(n, (r + 1) * kExtentRange);
-        for (std::int64_t q = r * kExtentRange; q < end; ++q) {
+        // kLanes running extents, lane l taking every kLanes-th particle: element-wise selects
+        // that vectorise (a single running minimum is a reduction, which stays scalar)
+        constexpr int kLanes = 8;
+        double lo[D][kLanes], hi[D][kLanes], a[D], b[D];
+        for (int k = 0; k < D; ++k) {
+          a[k] = min_[k], b[k] = max_[k];
+          for (int l = 0; l < kLanes; ++l) lo[k][l] = Extent::kInf, hi[k][l] = -Extent::kInf;
+        }
+        const std::int64_t first = r * kExtentRange, end = std::min(n, first + kExtentRange);
+        auto take = [&](std::int64_t q, int l) {
           bool in = true;  // inside(): `&` keeps the loop free of branches
           for (int k = 0; k < D; ++k) in = in & (x[q][k] >= a[k]) & (x[q][k] <= b[k]);
           for (int k = 0; k < D; ++k) {
-            lo[k] = in & (x[q][k] < lo[k]) ? x[q][k] : lo[k];
-            hi[k] = in & (x[q][k] > hi[k]) ? x[q][k] : hi[k];
+            lo[k][l] = in & (x[q][k] < lo[k][l]) ? x[q][k] : lo[k][l];
+            hi[k][l] = in & (x[q][k] > hi[k][l]) ? x[q][k] : hi[k][l];
           }
+        };
+        std::int64_t q0 = first;
+        for (; q0 + kLanes <= end; q0 += kLanes) {
+          for (int l = 0; l < kLanes; ++l) take(q0 + l, l);
+        }
+        for (std::int64_t q = q0; q < end; ++q) take(q, static_cast<int>(q - q0));
+        double lo_all[D], hi_all[D];
+        for (int k = 0; k < D; ++k) {
+          lo_all[k] = *std::min_element(lo[k], lo[k] + kLanes);
+          hi_all[k] = *std::max_element(hi[k], hi[k] + kLanes);
         }
         Extent mine;
-        for (int k = 0; k < D; ++k) mine.lo[k] = lo[k], mine.hi[k] = hi[k];
+        for (int k = 0; k < D; ++k) mine.lo[k] = lo_all[k], mine.hi[k] = hi_all[k];
         acc.merge(mine);
       });
   const bool any = e.lo[0] <= e.hi[0];
