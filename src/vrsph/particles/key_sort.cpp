@@ -15,24 +15,34 @@ void KeySort::Part::keep_only() {
   if constexpr (sizeof(C) != 4) std::vector<std::uint32_t>().swap(count32);
 }
 
-// The key window of one part and its dropped particles.
+// The key window of one part and its dropped particles: the keys' minimum and maximum as
+// reductions the compiler vectorises (kDropped, the largest key, never lowers the minimum and is
+// left out of the maximum), the dropped particles, which are rare, collected in a second loop only
+// where there are some.
 void KeySort::window(const std::vector<std::uint32_t>& keys, Part& part) {
-  part.lo = INT64_MAX;
-  part.hi = -1;
   part.dropped.clear();
-  for (std::int64_t i = part.first; i < part.last; ++i) {
-    const std::uint32_t k = keys[static_cast<std::size_t>(i)];
-    if (k == kDropped) {
-      part.dropped.push_back(static_cast<std::uint32_t>(i));
-      continue;
-    }
-    part.lo = std::min<std::int64_t>(part.lo, k);
-    part.hi = std::max<std::int64_t>(part.hi, k);
+  const std::uint32_t* __restrict key = keys.data();
+  const std::int64_t first = part.first, last = part.last;
+  std::uint32_t lo = kDropped, hi = 0, dropped = 0;
+  for (std::int64_t i = first; i < last; ++i) {
+    const std::uint32_t k = key[i];
+    const std::uint32_t drop = k == kDropped ? 1U : 0U, kept = k - drop * k;  // dropped: 0
+    lo = k < lo ? k : lo;
+    hi = kept > hi ? kept : hi;
+    dropped += drop;
   }
-  if (part.hi < part.lo) {
+  if (dropped > 0) {
+    for (std::int64_t i = part.first; i < part.last; ++i) {
+      if (key[i] == kDropped) part.dropped.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  if (dropped == last - first) {  // nothing kept
     part.lo = 0;
     part.hi = -1;
+    return;
   }
+  part.lo = lo;
+  part.hi = hi;
 }
 
 // The counts of one part's keys in counters of type C; false when one overflows. The counters
