@@ -73,15 +73,13 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
         // kLanes running extents, lane l taking every kLanes-th particle: element-wise selects
         // that vectorise (a single running minimum is a reduction, which stays scalar)
         constexpr int kLanes = 8;
-        double lo[D][kLanes], hi[D][kLanes], a[D], b[D];
+        double lo[D][kLanes], hi[D][kLanes];
         for (int k = 0; k < D; ++k) {
-          a[k] = min_[k], b[k] = max_[k];
           for (int l = 0; l < kLanes; ++l) lo[k][l] = Extent::kInf, hi[k][l] = -Extent::kInf;
         }
         const std::int64_t first = r * kExtentRange, end = std::min(n, first + kExtentRange);
         auto take = [&](std::int64_t q, int l) {
-          bool in = true;  // inside(): `&` keeps the loop free of branches
-          for (int k = 0; k < D; ++k) in = in & (x[q][k] >= a[k]) & (x[q][k] <= b[k]);
+          const bool in = inside(x[q]);
           for (int k = 0; k < D; ++k) {
             lo[k][l] = in & (x[q][k] < lo[k][l]) ? x[q][k] : lo[k][l];
             hi[k][l] = in & (x[q][k] > hi[k][l]) ? x[q][k] : hi[k][l];
@@ -92,13 +90,11 @@ void CellGrid<D>::fit_to(const ParticleSet<D>& ps) {
           for (int l = 0; l < kLanes; ++l) take(q0 + l, l);
         }
         for (std::int64_t q = q0; q < end; ++q) take(q, static_cast<int>(q - q0));
-        double lo_all[D], hi_all[D];
-        for (int k = 0; k < D; ++k) {
-          lo_all[k] = *std::min_element(lo[k], lo[k] + kLanes);
-          hi_all[k] = *std::max_element(hi[k], hi[k] + kLanes);
-        }
         Extent mine;
-        for (int k = 0; k < D; ++k) mine.lo[k] = lo_all[k], mine.hi[k] = hi_all[k];
+        for (int k = 0; k < D; ++k) {
+          mine.lo[k] = *std::min_element(lo[k], lo[k] + kLanes);
+          mine.hi[k] = *std::max_element(hi[k], hi[k] + kLanes);
+        }
         acc.merge(mine);
       });
   const bool any = e.lo[0] <= e.hi[0];
@@ -151,10 +147,9 @@ void CellGrid<D>::table_cells(const Vec<D>* __restrict x, std::size_t count,
 
 template <int D>
 bool CellGrid<D>::inside(const Vec<D>& x) const {
-  for (int k = 0; k < D; ++k) {
-    if (!(x[k] >= min_[k] && x[k] <= max_[k])) return false;  // NaN counts as outside
-  }
-  return true;
+  bool in = true;  // `&`, no early return: the loops over particles that call it vectorise
+  for (int k = 0; k < D; ++k) in = in & (x[k] >= min_[k]) & (x[k] <= max_[k]);  // NaN: outside
+  return in;
 }
 
 template <int D>

@@ -94,7 +94,7 @@ class CellGrid {
       fn(static_cast<std::uint32_t>(
           starts_[static_cast<std::int64_t>(g) * ncell_total_ + c + offset + next_row]));
     };
-    for_each_row(c, g, 0, -1, run);
+    for_each_row(c, g, 0, -1, run);  // the bounds 0, -1: the runs themselves are not read
   }
   // The first cell of c's row of the table.
   std::int64_t row_first(std::int64_t c) const { return c - c % n_[0]; }

@@ -32,7 +32,7 @@ void KeySort::window(const std::vector<std::uint32_t>& keys, Part& part) {
     dropped += drop;
   }
   if (dropped > 0) {
-    for (std::int64_t i = part.first; i < part.last; ++i) {
+    for (std::int64_t i = first; i < last; ++i) {
       if (key[i] == kDropped) part.dropped.push_back(static_cast<std::uint32_t>(i));
     }
   }

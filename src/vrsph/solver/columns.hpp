@@ -128,8 +128,7 @@ struct LevelColumns {
     const double rho0 = eos.rho0;
     for (std::size_t q = a; q < b; ++q) dev[q] = static_cast<T>(rho[q] - rho0);
     if (eos.gamma == 7.0) {  // the branch of TaitEos::pressure, out of the loop
-      const TaitEos seven = eos;
-      for (std::size_t q = a; q < b; ++q) p[q] = static_cast<T>(seven.pressure_gamma7(rho[q]));
+      for (std::size_t q = a; q < b; ++q) p[q] = static_cast<T>(eos.pressure_gamma7(rho[q]));
     } else {
       for (std::size_t q = a; q < b; ++q) p[q] = static_cast<T>(eos.pressure(rho[q]));
     }
