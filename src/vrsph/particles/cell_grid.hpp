@@ -90,11 +90,10 @@ class CellGrid {
   template <class Fn>
   void for_each_row_end(std::int64_t c, Group g, Fn&& fn) const {
     const std::int64_t next_row = c - c % n_[0] + n_[0] - c;  // from c to the next row's start
-    auto run = [&](std::uint32_t, std::uint32_t, std::int64_t offset) {
-      fn(static_cast<std::uint32_t>(
-          starts_[static_cast<std::int64_t>(g) * ncell_total_ + c + offset + next_row]));
-    };
-    for_each_row(c, g, 0, -1, run);  // the bounds 0, -1: the runs themselves are not read
+    const std::int64_t base = static_cast<std::int64_t>(g) * ncell_total_ + next_row;
+    for_each_stencil_row(c, [&](std::int64_t row) {  // for_each_row's order of rows
+      fn(static_cast<std::uint32_t>(starts_[base + row]));
+    });
   }
   // The first cell of c's row of the table.
   std::int64_t row_first(std::int64_t c) const { return c - c % n_[0]; }
