@@ -8,7 +8,9 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 
 namespace vrsph::exec {
 
@@ -42,18 +44,47 @@ inline void for_each_dynamic(std::int64_t n, int chunk, Body&& body) {
   for (std::int64_t i = 0; i < n; ++i) body(i);
 }
 
+// Thread t's share of [0, n) among nt threads: the contiguous range OpenMP's schedule(static)
+// gives it, so that a gather pass finds in its own cache what the static per-particle loops
+// (for_each, for_each_range) last wrote.
+inline std::int64_t static_share_begin(std::int64_t n, int t, int nt) {
+  const std::int64_t q = n / nt, r = n % nt;
+  return t * q + std::min<std::int64_t>(t, r);
+}
+
+// A chunk counter on a cache line of its own.
+struct alignas(64) ChunkCounter {
+  std::atomic<std::int64_t> next{0};
+};
+
 // body(i, scratch, acc) with one Scratch (reused buffers, e.g. a candidate block) and one Acc per
 // thread; the threads' Acc are combined with Acc::merge into the result. Acc::merge must be
 // order-independent (maxima, integer sums) for the result to be independent of the threads.
+// Schedule: each thread takes chunks of `chunk` indices from the front of its static share
+// first, then from the other shares in turn (work stealing). A particle is then handled by the
+// same thread in every pass unless its thread fell behind, which keeps its data in one core's
+// cache; a plain dynamic schedule hands chunks out at random and moves about half the data
+// between cores at every pass.
 template <class Scratch, class Acc, class Body>
 inline Acc for_each_gather(std::int64_t n, int chunk, Body&& body) {
   Acc total{};
+  const int max_threads = thread_count();
+  std::unique_ptr<ChunkCounter[]> counters(new ChunkCounter[max_threads]);
 #pragma omp parallel
   {
+    const int nt = omp_get_num_threads(), t = omp_get_thread_num();
     Scratch scratch{};
     Acc acc{};
-#pragma omp for schedule(dynamic, chunk) nowait
-    for (std::int64_t i = 0; i < n; ++i) body(i, scratch, acc);
+    for (int k = 0; k < nt; ++k) {
+      const int r = (t + k) % nt;  // own share first, then the others
+      const std::int64_t b = static_share_begin(n, r, nt), e = static_share_begin(n, r + 1, nt);
+      for (;;) {
+        const std::int64_t i0 = b + counters[r].next.fetch_add(chunk, std::memory_order_relaxed);
+        if (i0 >= e) break;
+        const std::int64_t i1 = std::min(e, i0 + chunk);
+        for (std::int64_t i = i0; i < i1; ++i) body(i, scratch, acc);
+      }
+    }
 #pragma omp critical(vrsph_exec_merge)
     total.merge(acc);
   }
@@ -70,8 +101,8 @@ inline void for_each_with(std::int64_t n, int chunk, Body&& body) {
       n, chunk, [&](std::int64_t i, Scratch& scratch, Nothing&) { body(i, scratch); });
 }
 
-// The largest of `floor` and body(i) over i in [0, n), in dynamic chunks; a maximum, so the
-// same for any thread count. body may also write the entries of i (gather form).
+// The largest of `floor` and body(i) over i in [0, n), in chunks as for_each_gather; a maximum,
+// so the same for any thread count. body may also write the entries of i (gather form).
 template <class Body>
 inline double max_of(std::int64_t n, int chunk, double floor, Body&& body) {
   struct Max {
