@@ -37,9 +37,8 @@ inline std::int64_t static_share_begin(std::int64_t n, int t, int nt) {
 // thread walks its static share (static_share_begin, the range for_each gives it) in blocks.
 // For cheap per-particle loops written over a range with raw pointers, so that the compiler
 // vectorises them (a body per index through vector members reloads their pointers after every
-// store and stays scalar). Blocks of the whole range dealt out by schedule(static) had given
-// thread 0 two of the three 2,048-particle blocks of a 5,027-particle drop, and half of the
-// particles another core's cache held.
+// store and stays scalar). Whole-range blocks dealt out by schedule(static) would give one
+// thread two of a 5,027-particle drop's three 2,048-blocks, most of them written by the other.
 template <class Body>
 inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
 #pragma omp parallel
