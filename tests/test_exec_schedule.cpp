@@ -1,7 +1,9 @@
 // exec::for_each_gather's schedule: every thread starts on its own static share and then takes
 // chunks of the others' (work stealing). Whatever the thread count, the chunk size and the
 // imbalance, every index must be visited exactly once, each thread's accumulator merged once,
-// and a thread that is not held up must sweep its own share itself.
+// and a thread that is not held up must sweep its own share itself. Then the choice between the
+// team and the calling thread alone (exec/launch_tuner.hpp): the same results either way, and
+// the tuner takes whichever is faster.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -29,7 +31,15 @@ struct Threads {
   ~Threads() { exec::set_thread_count(saved); }
 };
 
+// Sets the launch policy for a test and restores it. The schedule tests below need the team.
+struct Policy {
+  exec::LaunchPolicy saved = exec::launch_policy();
+  explicit Policy(exec::LaunchPolicy p) { exec::set_launch_policy(p); }
+  ~Policy() { exec::set_launch_policy(saved); }
+};
+
 TEST(ExecSchedule, EveryIndexOnceForAnyThreadsAndChunk) {
+  const Policy team(exec::LaunchPolicy::team);
   for (int threads : {1, 2, 3, 5}) {
     const Threads t(threads);
     for (std::int64_t n : {0, 1, 2, 7, 64, 1000, 4099}) {
@@ -53,6 +63,7 @@ TEST(ExecSchedule, EveryIndexOnceForAnyThreadsAndChunk) {
 // The static shares are those of OpenMP's schedule(static) (exec::for_each), so the gather
 // passes sweep a particle on the core whose loops last wrote it.
 TEST(ExecSchedule, SharesAreTheStaticSchedule) {
+  const Policy team(exec::LaunchPolicy::team);
   for (int nt : {1, 2, 3, 4}) {
     const Threads t(nt);
     for (std::int64_t n : {0, 1, 5, 10, 1001}) {
@@ -72,6 +83,7 @@ TEST(ExecSchedule, SharesAreTheStaticSchedule) {
 // Thread 1 held up in its first chunk: thread 0 sweeps its own share and then takes the rest of
 // thread 1's, so the pass does not wait for the slow thread's whole share.
 TEST(ExecSchedule, AFreeThreadTakesTheChunksOfOneHeldUp) {
+  const Policy team(exec::LaunchPolicy::team);
   const Threads t(2);
   if (omp_get_max_threads() != 2) GTEST_SKIP() << "needs two OpenMP threads";
   constexpr std::int64_t n = 400, chunk = 10;
@@ -103,6 +115,75 @@ TEST(ExecSchedule, AFreeThreadTakesTheChunksOfOneHeldUp) {
     }
   }
   EXPECT_EQ(by0, n - chunk);
+}
+
+// Every launch gives the same result on the team and on the calling thread alone, and with the
+// tuner choosing between them call by call.
+TEST(ExecLaunch, SameResultsAloneOnTheTeamAndTuned) {
+  const Threads t(3);
+  for (std::int64_t n : {0, 1, 7, 1000, 70000}) {
+    std::vector<std::vector<std::int64_t>> got;
+    for (auto p :
+         {exec::LaunchPolicy::team, exec::LaunchPolicy::alone, exec::LaunchPolicy::tuned}) {
+      const Policy policy(p);
+      for (int call = 0; call < 20; ++call) {  // the tuned launches alternate while on trial
+        std::vector<std::int64_t> v(static_cast<std::size_t>(n), 0), r;
+        exec::for_each(n, [&](std::int64_t i) { v[i] += i; });
+        exec::for_each_range(n, 64, [&](std::int64_t a, std::int64_t b) {
+          for (std::int64_t i = a; i < b; ++i) v[i] += 2 * i;
+        });
+        exec::for_each_dynamic(n, 16, [&](std::int64_t i) { v[i] += 3 * i; });
+        exec::for_each_with<NoScratch>(n, 8, [&](std::int64_t i, NoScratch&) { v[i] += 4 * i; });
+        const Count c = exec::for_each_gather<NoScratch, Count>(
+            n, 8, [&](std::int64_t, NoScratch&, Count& acc) { ++acc.visits; });
+        r = v;
+        r.push_back(c.visits);
+        r.push_back(static_cast<std::int64_t>(
+            exec::max_of(n, 8, -1.0, [](std::int64_t i) { return static_cast<double>(i % 977); })));
+        r.push_back(exec::any_of(n, 4, [n](std::int64_t i) { return i == n / 2; }));
+        r.push_back(exec::first_index(n, [](std::int64_t i) { return i % 300 == 299; }));
+        if (!got.empty()) {
+          ASSERT_EQ(r, got.front()) << "n " << n << ", policy " << static_cast<int>(p);
+        }
+        got.push_back(r);
+      }
+    }
+  }
+}
+
+// Spins for `us` microseconds.
+void spin_us(int us) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::microseconds(us);
+  while (std::chrono::steady_clock::now() < end) {
+  }
+}
+
+// Launches of one call site (one per Site) whose body spins 200 us once per launch when it runs on
+// the team (slow_team) or alone; returns how many of the launches after the trial ran alone.
+template <int Site>
+int alone_after_trial(bool slow_team, int calls) {
+  int alone = 0;
+  for (int call = 0; call < calls; ++call) {
+    std::atomic<int> on_team{0};
+    exec::for_each(100, [&](std::int64_t i) {
+      const bool team = omp_in_parallel() != 0;
+      if (i == 0 && team == slow_team) spin_us(200);
+      if (team) on_team = 1;
+    });
+    if (call >= 2 * exec::LaunchTuner::kTrials) alone += on_team == 0;
+  }
+  return alone;
+}
+
+// A call site whose loops are slower on the team runs them alone after its trial, and one whose
+// loops are slower alone keeps the team.
+TEST(ExecLaunch, TunerTakesTheFasterWay) {
+  const Threads t(2);
+  if (omp_get_max_threads() != 2) GTEST_SKIP() << "needs two OpenMP threads";
+  const Policy tuned(exec::LaunchPolicy::tuned);
+  constexpr int calls = 40, after = calls - 2 * exec::LaunchTuner::kTrials;
+  EXPECT_EQ(alone_after_trial<0>(true, calls), after) << "the team was slower";
+  EXPECT_EQ(alone_after_trial<1>(false, calls), 0) << "alone was slower";
 }
 
 }  // namespace

@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <memory>
 
+#include "vrsph/exec/launch_tuner.hpp"
+
 namespace vrsph::exec {
 
 // Threads a launch uses (OpenMP's current maximum), and a way to set it (--threads).
@@ -19,10 +21,20 @@ inline int thread_count() { return omp_get_max_threads(); }
 inline void set_thread_count(int n) { omp_set_num_threads(n); }
 
 // body(i) for every i in [0, n), in equal static blocks: cheap, uniform per-particle work.
+// Every launch below runs short loops on the team or on the calling thread alone, as its call
+// site's LaunchTuner chose by timing both (exec/launch_tuner.hpp); the result is the same.
+
 template <class Body>
 inline void for_each(std::int64_t n, Body&& body) {
+  static LaunchTuner tuner;
+  const Launch l = tuner.begin(n);
+  if (l.alone) {
+    for (std::int64_t i = 0; i < n; ++i) body(i);
+  } else {
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) body(i);
+    for (std::int64_t i = 0; i < n; ++i) body(i);
+  }
+  tuner.end(l);
 }
 
 // Thread t's share of [0, n) among nt threads: the contiguous range OpenMP's schedule(static)
@@ -41,6 +53,13 @@ inline std::int64_t static_share_begin(std::int64_t n, int t, int nt) {
 // thread two of a 5,027-particle drop's three 2,048-blocks, most of them written by the other.
 template <class Body>
 inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
+  static LaunchTuner tuner;
+  const Launch l = tuner.begin(n);
+  if (l.alone) {
+    for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
+    tuner.end(l);
+    return;
+  }
 #pragma omp parallel
   {
     const int nt = omp_get_num_threads(), t = omp_get_thread_num();
@@ -48,6 +67,7 @@ inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
     for (std::int64_t a = static_share_begin(n, t, nt); a < end; a += block)
       body(a, std::min(end, a + block));
   }
+  tuner.end(l);
 }
 
 // body(i) for every i in [0, n), handed out in chunks of `chunk` consecutive indices: neighbour
@@ -126,6 +146,14 @@ inline double max_of(std::int64_t n, int chunk, double floor, Body&& body) {
 // thread count.
 template <class Pred>
 inline bool any_of(std::int64_t n, std::int64_t chunk, Pred&& pred) {
+  static LaunchTuner tuner;
+  const Launch l = tuner.begin(n);
+  if (l.alone) {
+    bool hit = false;
+    for (std::int64_t i = 0; i < n && !hit; ++i) hit = pred(i);
+    tuner.end(l);
+    return hit;
+  }
   const std::int64_t chunks = (n + chunk - 1) / chunk;
   int found = 0;
 #pragma omp parallel for schedule(dynamic, 1)
@@ -142,6 +170,7 @@ inline bool any_of(std::int64_t n, std::int64_t chunk, Pred&& pred) {
       break;
     }
   }
+  tuner.end(l);
   return found != 0;
 }
 
@@ -149,11 +178,19 @@ inline bool any_of(std::int64_t n, std::int64_t chunk, Pred&& pred) {
 // count (diagnoses name the same particle).
 template <class Pred>
 inline std::int64_t first_index(std::int64_t n, Pred&& pred) {
+  static LaunchTuner tuner;
+  const Launch l = tuner.begin(n);
   std::int64_t first = n;
+  if (l.alone) {
+    for (std::int64_t i = 0; i < n && first == n; ++i)
+      if (pred(i)) first = i;
+  } else {
 #pragma omp parallel for schedule(static) reduction(min : first)
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (pred(i)) first = std::min(first, i);
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (pred(i)) first = std::min(first, i);
+    }
   }
+  tuner.end(l);
   return first;
 }
 

@@ -1,0 +1,116 @@
+// Whether a short loop runs on the team of threads or on the calling thread alone, chosen per
+// call site and loop size by timing both on the machine at hand (exec/parallel.hpp).
+//
+// Opening a parallel region and joining it costs a few microseconds (about 2 us per region on two
+// threads of an AMD EPYC, docs/validation.md), and a loop whose particles the other core last
+// wrote reads them across the cores first. A per-particle loop over a level of a few thousand
+// particles (a VR drop's levels: 830 and 2,930) does 5-10 us of work, so whether a second thread
+// pays depends on the machine: on an AMD EPYC (Zen 5) running such loops on one thread made the
+// VR drop 7% faster, on an Intel Xeon 7% slower. So each call site measures: for loops of fewer
+// than 2^16 indices, grouped by the bit width of n, the first calls alternate between the team
+// and the calling thread (kTrials timed calls each), then the faster median wins, and the trial is
+// repeated every kRetrial calls in case the machine's load changed. Larger loops and runs on one
+// thread are never timed.
+//
+// Only where the chosen threads run, never what a loop computes: every exec loop is in gather
+// form (each index writes only its own entries, and reductions are order-independent), so a loop
+// gives the same bits on one thread as on the team.
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+namespace vrsph::exec {
+
+// How every call site launches its loops: by measurement (the default), always on the team, or
+// always on the calling thread (tests and benchmarks set the last two).
+enum class LaunchPolicy : int { tuned, team, alone };
+
+// The environment variable VRSPH_LAUNCH ("tuned", "team", "alone") sets the starting policy.
+inline LaunchPolicy launch_policy_from_env() {
+  const char* v = std::getenv("VRSPH_LAUNCH");
+  if (v == nullptr) return LaunchPolicy::tuned;
+  const std::string_view s(v);
+  return s == "team" ? LaunchPolicy::team : s == "alone" ? LaunchPolicy::alone : LaunchPolicy::tuned;
+}
+inline std::atomic<int>& launch_policy_slot() {
+  static std::atomic<int> policy{static_cast<int>(launch_policy_from_env())};
+  return policy;
+}
+inline LaunchPolicy launch_policy() {
+  return static_cast<LaunchPolicy>(launch_policy_slot().load(std::memory_order_relaxed));
+}
+inline void set_launch_policy(LaunchPolicy p) {
+  launch_policy_slot().store(static_cast<int>(p), std::memory_order_relaxed);
+}
+
+// One launch's choice, and its start time while the call site is on trial.
+struct Launch {
+  bool alone = false;
+  int size_class = -1;  // -1: not timed
+  std::int64_t start_ns = 0;
+};
+
+class LaunchTuner {
+ public:
+  static constexpr int kTunedBits = 16;  // loops of n < 2^16 indices are tuned
+  static constexpr int kTrials = 8;      // timed calls of each kind per trial
+  static constexpr int kRetrial = 4096;  // calls of a size class between trials
+
+  // The choice for a loop of n indices, called by the thread that launches it.
+  Launch begin(std::int64_t n) {
+    const LaunchPolicy p = launch_policy();
+    if (p != LaunchPolicy::tuned) return {p == LaunchPolicy::alone};
+    if (omp_get_max_threads() == 1) return {true};
+    if (n >= (std::int64_t{1} << kTunedBits) || omp_in_parallel()) return {false};
+    const int c = std::bit_width(static_cast<std::uint64_t>(n));
+    Class& k = classes_[static_cast<std::size_t>(c)];
+    if (k.trial_left == 0) {  // decided
+      if (++k.calls_since < kRetrial) return {k.alone};
+      k.calls_since = 0;
+      k.trial_left = 2 * kTrials;
+    }
+    return {k.trial_left % 2 == 0, c, now_ns()};  // alternate, alone first
+  }
+
+  // After the loop: records a timed launch, and decides once a trial is complete.
+  void end(const Launch& l) {
+    if (l.size_class < 0) return;
+    Class& k = classes_[static_cast<std::size_t>(l.size_class)];
+    const std::int64_t dt = now_ns() - l.start_ns;
+    const int slot = (2 * kTrials - k.trial_left) / 2;
+    (l.alone ? k.t_alone : k.t_team)[static_cast<std::size_t>(slot)] = dt;
+    if (--k.trial_left > 0) return;
+    k.alone = median(k.t_alone) < median(k.t_team);
+  }
+
+ private:
+  struct Class {
+    int trial_left = 2 * kTrials;  // timed calls still to make; 0: decided
+    int calls_since = 0;
+    bool alone = false;
+    std::array<std::int64_t, kTrials> t_alone{}, t_team{};
+  };
+
+  static std::int64_t now_ns() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+  static std::int64_t median(std::array<std::int64_t, kTrials> t) {
+    std::nth_element(t.begin(), t.begin() + kTrials / 2, t.end());
+    return t[kTrials / 2];
+  }
+
+  std::array<Class, kTunedBits + 1> classes_{};
+};
+
+}  // namespace vrsph::exec
