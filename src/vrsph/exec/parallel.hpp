@@ -21,8 +21,9 @@ inline int thread_count() { return omp_get_max_threads(); }
 inline void set_thread_count(int n) { omp_set_num_threads(n); }
 
 // body(i) for every i in [0, n), in equal static blocks: cheap, uniform per-particle work.
-// Every launch below runs short loops on the team or on the calling thread alone, as its call
-// site's LaunchTuner chose by timing both (exec/launch_tuner.hpp); the result is the same.
+// The static launches (for_each, for_each_range, any_of, first_index) run short loops on the team
+// or on the calling thread alone, as their call site's LaunchTuner chose by timing both
+// (exec/launch_tuner.hpp); the result is the same.
 
 template <class Body>
 inline void for_each(std::int64_t n, Body&& body) {
