@@ -44,7 +44,9 @@ inline LaunchPolicy launch_policy_from_env() {
   const char* v = std::getenv("VRSPH_LAUNCH");
   if (v == nullptr) return LaunchPolicy::tuned;
   const std::string_view s(v);
-  return s == "team" ? LaunchPolicy::team : s == "alone" ? LaunchPolicy::alone : LaunchPolicy::tuned;
+  return s == "team"    ? LaunchPolicy::team
+         : s == "alone" ? LaunchPolicy::alone
+                        : LaunchPolicy::tuned;
 }
 inline std::atomic<int>& launch_policy_slot() {
   static std::atomic<int> policy{static_cast<int>(launch_policy_from_env())};
