@@ -10,7 +10,8 @@
 // than 2^16 indices, grouped by the bit width of n, the first calls alternate between the team
 // and the calling thread (kTrials timed calls each), then the faster median wins, and the trial is
 // repeated every kRetrial calls in case the machine's load changed. Larger loops and runs on one
-// thread are never timed.
+// thread are never timed. Each launching thread keeps its own tuners (thread_local), so a program
+// that runs simulations from several threads shares no tuner state between them.
 //
 // Only where the chosen threads run, never what a loop computes: every exec loop is in gather
 // form (each index writes only its own entries, and reductions are order-independent), so a loop

@@ -27,7 +27,7 @@ inline void set_thread_count(int n) { omp_set_num_threads(n); }
 
 template <class Body>
 inline void for_each(std::int64_t n, Body&& body) {
-  static LaunchTuner tuner;
+  static thread_local LaunchTuner tuner;  // per launching thread: no shared state
   const Launch l = tuner.begin(n);
   if (l.alone) {
     for (std::int64_t i = 0; i < n; ++i) body(i);
@@ -54,7 +54,7 @@ inline std::int64_t static_share_begin(std::int64_t n, int t, int nt) {
 // thread two of a 5,027-particle drop's three 2,048-blocks, most of them written by the other.
 template <class Body>
 inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
-  static LaunchTuner tuner;
+  static thread_local LaunchTuner tuner;
   const Launch l = tuner.begin(n);
   if (l.alone) {
     for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
@@ -147,7 +147,7 @@ inline double max_of(std::int64_t n, int chunk, double floor, Body&& body) {
 // thread count.
 template <class Pred>
 inline bool any_of(std::int64_t n, std::int64_t chunk, Pred&& pred) {
-  static LaunchTuner tuner;
+  static thread_local LaunchTuner tuner;
   const Launch l = tuner.begin(n);
   if (l.alone) {
     bool hit = false;
@@ -179,7 +179,7 @@ inline bool any_of(std::int64_t n, std::int64_t chunk, Pred&& pred) {
 // count (diagnoses name the same particle).
 template <class Pred>
 inline std::int64_t first_index(std::int64_t n, Pred&& pred) {
-  static LaunchTuner tuner;
+  static thread_local LaunchTuner tuner;
   const Launch l = tuner.begin(n);
   std::int64_t first = n;
   if (l.alone) {
