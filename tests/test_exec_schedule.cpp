@@ -128,12 +128,12 @@ TEST(ExecLaunch, SameResultsAloneOnTheTeamAndTuned) {
       const Policy policy(p);
       for (int call = 0; call < 20; ++call) {  // the tuned launches alternate while on trial
         std::vector<std::int64_t> v(static_cast<std::size_t>(n), 0), r;
-        exec::for_each(n, [&](std::int64_t i) { v[i] += i; });
+        exec::for_each(n, [&](std::int64_t i) { v[i] += i + 1; });
         exec::for_each_range(n, 64, [&](std::int64_t a, std::int64_t b) {
-          for (std::int64_t i = a; i < b; ++i) v[i] += 2 * i;
+          for (std::int64_t i = a; i < b; ++i) v[i] += 2 * i + 2;
         });
-        exec::for_each_dynamic(n, 16, [&](std::int64_t i) { v[i] += 3 * i; });
-        exec::for_each_with<NoScratch>(n, 8, [&](std::int64_t i, NoScratch&) { v[i] += 4 * i; });
+        exec::for_each_dynamic(n, 16, [&](std::int64_t i) { v[i] += 3 * i + 3; });
+        exec::for_each_with<NoScratch>(n, 8, [&](std::int64_t i, NoScratch&) { v[i] += 4 * i + 4; });
         const Count c = exec::for_each_gather<NoScratch, Count>(
             n, 8, [&](std::int64_t, NoScratch&, Count& acc) { ++acc.visits; });
         r = v;

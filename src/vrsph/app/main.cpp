@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "vrsph/driver/data_dir.hpp"
 #include "vrsph/driver/run.hpp"
+#include "vrsph/exec/launch_tuner.hpp"
 #include "vrsph/setup/case_parser.hpp"
 
 namespace {
@@ -214,6 +216,14 @@ int dispatch(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);
     fmt::print(stderr, "vrsph: {}\n", e.what());
     return kExitBadInput;
+  }
+  if (const char* launch = std::getenv("VRSPH_LAUNCH")) {  // exec/launch_tuner.hpp
+    const auto policy = exec::launch_policy_named(launch);
+    if (!policy) {
+      fmt::print(stderr, "vrsph: VRSPH_LAUNCH = '{}': not one of tuned, team, alone\n", launch);
+      return kExitBadInput;
+    }
+    exec::set_launch_policy(*policy);
   }
   if (*check) {
     return check_case(load_given_case(args.case_path, args.sets), origin_of(args, args.case_path));

@@ -31,7 +31,7 @@
 #include <bit>
 #include <chrono>
 #include <cstdint>
-#include <cstdlib>
+#include <optional>
 #include <string_view>
 
 namespace vrsph::exec {
@@ -40,17 +40,16 @@ namespace vrsph::exec {
 // always on the calling thread (tests and benchmarks set the last two).
 enum class LaunchPolicy : int { tuned, team, alone };
 
-// The environment variable VRSPH_LAUNCH ("tuned", "team", "alone") sets the starting policy.
-inline LaunchPolicy launch_policy_from_env() {
-  const char* v = std::getenv("VRSPH_LAUNCH");
-  if (v == nullptr) return LaunchPolicy::tuned;
-  const std::string_view s(v);
-  return s == "team"    ? LaunchPolicy::team
-         : s == "alone" ? LaunchPolicy::alone
-                        : LaunchPolicy::tuned;
+// The policy of a name ("tuned", "team", "alone": the values of the environment variable
+// VRSPH_LAUNCH, which the command reads), or none.
+inline std::optional<LaunchPolicy> launch_policy_named(std::string_view name) {
+  if (name == "tuned") return LaunchPolicy::tuned;
+  if (name == "team") return LaunchPolicy::team;
+  if (name == "alone") return LaunchPolicy::alone;
+  return std::nullopt;
 }
 inline std::atomic<int>& launch_policy_slot() {
-  static std::atomic<int> policy{static_cast<int>(launch_policy_from_env())};
+  static std::atomic<int> policy{static_cast<int>(LaunchPolicy::tuned)};
   return policy;
 }
 inline LaunchPolicy launch_policy() {
