@@ -133,7 +133,8 @@ TEST(ExecLaunch, SameResultsAloneOnTheTeamAndTuned) {
           for (std::int64_t i = a; i < b; ++i) v[i] += 2 * i + 2;
         });
         exec::for_each_dynamic(n, 16, [&](std::int64_t i) { v[i] += 3 * i + 3; });
-        exec::for_each_with<NoScratch>(n, 8, [&](std::int64_t i, NoScratch&) { v[i] += 4 * i + 4; });
+        exec::for_each_with<NoScratch>(n, 8,
+                                       [&](std::int64_t i, NoScratch&) { v[i] += 4 * i + 4; });
         const Count c = exec::for_each_gather<NoScratch, Count>(
             n, 8, [&](std::int64_t, NoScratch&, Count& acc) { ++acc.visits; });
         r = v;
