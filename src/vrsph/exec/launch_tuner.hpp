@@ -17,10 +17,13 @@
 // form (each index writes only its own entries, and reductions are order-independent), so a loop
 // gives the same bits on one thread as on the team.
 //
-// Only the cheap static launches are tuned (for_each, for_each_range, any_of, first_index). A trial
-// times the loop alone, not what follows it: a neighbour pass run on one thread pulls the other
-// thread's share into its core, and the passes after it pay for that. With the gather and dynamic
-// launches tuned too, the uniform drop of issue #19 ran 10% slower on two threads (5 rounds).
+// Only the cheap static launches are tuned (for_each, for_each_range, any_of, first_index), and
+// of these not the loops tagged exec::in_shares (exec/parallel.hpp), whose per-particle writes the
+// next neighbour pass reads share by share. A trial times the loop alone, not what follows it: a
+// loop run on one thread leaves the other thread's share in its own core's cache, and the pass
+// after it pays for that. Measured on two threads of an AMD EPYC (docs/validation.md): with the
+// gather and dynamic launches tuned too, the uniform drop of issue #19 ran 10% slower; with the
+// sort's permutations, the packing and the integrator tuned, 9% slower than with them on the team.
 #pragma once
 
 #include <omp.h>

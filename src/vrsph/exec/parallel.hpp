@@ -24,6 +24,11 @@ inline void set_thread_count(int n) { omp_set_num_threads(n); }
 // The static launches (for_each, for_each_range, any_of, first_index) run short loops on the team
 // or on the calling thread alone, as their call site's LaunchTuner chose by timing both
 // (exec/launch_tuner.hpp); the result is the same.
+template <class Body>
+inline void team_for_each(std::int64_t n, Body&& body) {
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) body(i);
+}
 
 template <class Body>
 inline void for_each(std::int64_t n, Body&& body) {
@@ -32,10 +37,22 @@ inline void for_each(std::int64_t n, Body&& body) {
   if (l.alone) {
     for (std::int64_t i = 0; i < n; ++i) body(i);
   } else {
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) body(i);
+    team_for_each(n, body);
   }
   tuner.end(l);
+}
+
+// The tag of a loop whose per-particle writes the next neighbour pass reads share by share (the
+// sort's permutations, the packed columns, fields the next sweep reads): it always runs on the
+// team, so that each share is written by the core that reads it next. A trial would time the loop
+// alone, not that read: with these loops tuned, the uniform drop of issue #19 ran 5% slower on two
+// threads while its loops ran faster (docs/validation.md).
+struct InShares {};
+inline constexpr InShares in_shares{};
+
+template <class Body>
+inline void for_each(InShares, std::int64_t n, Body&& body) {
+  team_for_each(n, body);
 }
 
 // Thread t's share of [0, n) among nt threads: the contiguous range OpenMP's schedule(static)
@@ -53,14 +70,7 @@ inline std::int64_t static_share_begin(std::int64_t n, int t, int nt) {
 // store and stays scalar). Whole-range blocks dealt out by schedule(static) would give one
 // thread two of a 5,027-particle drop's three 2,048-blocks, most of them written by the other.
 template <class Body>
-inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
-  static thread_local LaunchTuner tuner;
-  const Launch l = tuner.begin(n);
-  if (l.alone) {
-    for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
-    tuner.end(l);
-    return;
-  }
+inline void team_for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
 #pragma omp parallel
   {
     const int nt = omp_get_num_threads(), t = omp_get_thread_num();
@@ -68,7 +78,23 @@ inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
     for (std::int64_t a = static_share_begin(n, t, nt); a < end; a += block)
       body(a, std::min(end, a + block));
   }
+}
+
+template <class Body>
+inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
+  static thread_local LaunchTuner tuner;
+  const Launch l = tuner.begin(n);
+  if (l.alone) {
+    for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
+  } else {
+    team_for_each_range(n, block, body);
+  }
   tuner.end(l);
+}
+
+template <class Body>
+inline void for_each_range(InShares, std::int64_t n, std::int64_t block, Body&& body) {
+  team_for_each_range(n, block, body);
 }
 
 // body(i) for every i in [0, n), handed out in chunks of `chunk` consecutive indices: neighbour

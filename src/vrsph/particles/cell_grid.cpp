@@ -182,7 +182,7 @@ namespace {
 template <class T>
 void permute_into(const std::vector<T>& a, const std::vector<std::uint32_t>& perm,
                   std::vector<T>& scratch) {
-  exec::for_each(static_cast<std::int64_t>(perm.size()),
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(perm.size()),
                  [&](std::int64_t i) { scratch[i] = a[perm[i]]; });
 }
 
@@ -195,11 +195,11 @@ void permute_through(std::vector<T>& a, const std::vector<std::uint32_t>& perm,
   const std::size_t n = perm.size();
   if (room.size() < n) room.resize(n);
   auto* bytes = reinterpret_cast<unsigned char*>(room.data());
-  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(n), [&](std::int64_t i) {
     std::memcpy(bytes + static_cast<std::size_t>(i) * sizeof(T), &a[perm[i]], sizeof(T));
   });
   a.resize(n);
-  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(n), [&](std::int64_t i) {
     std::memcpy(&a[i], bytes + static_cast<std::size_t>(i) * sizeof(T), sizeof(T));
   });
 }

@@ -157,7 +157,7 @@ struct LevelColumns {
     st.lay_out(grid, absent, alias);
     const auto n = static_cast<std::int64_t>(ps.size());
     const bool buffers = has_wall_vol && !kGeometry;
-    exec::for_each_range(n, kPackRange, [&](std::int64_t a, std::int64_t b) {
+    exec::for_each_range(exec::in_shares, n, kPackRange, [&](std::int64_t a, std::int64_t b) {
       const auto qa = static_cast<std::size_t>(a), qb = static_cast<std::size_t>(b);
       st.put_positions(ps.pos.data(), qa, qb);
       pack_volumes(ps, st.col[C::vol].data(), qa, qb);
@@ -176,7 +176,7 @@ struct LevelColumns {
     // padded as the state's columns (particles/run_columns.hpp)
     surface_vol.assign(surface_without_buffers ? n + kBlockPad : 0, T(0));
     if (surface_without_buffers) {
-      exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+      exec::for_each(exec::in_shares, static_cast<std::int64_t>(n), [&](std::int64_t i) {
         surface_vol[i] = ps.kind[i] == Kind::buffer ? T(0) : vol_col[i];
       });
     }

@@ -75,7 +75,7 @@ void predictor(Level<D>& L, double dt) {
   const Vec<D> g = L.prm.gravity;
   const bool keep_x = ps.keeps_pos0;
   const bool uniform = L.fluid_acc_uniform != Vec<D>{};
-  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     if (keep_x) ps.pos0[i] = ps.pos[i];
     ps.vel0[i] = ps.vel[i];
     ps.rho0[i] = ps.rho[i];
@@ -107,7 +107,7 @@ void corrector(Level<D>& L, double dt) {
   const bool shifting = prm.shifting.on();
   const bool constrained = !L.buffer_shift_normal.empty();
   const bool uniform = L.fluid_acc_uniform != Vec<D>{};
-  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     if (ps.kind[i] == Kind::wall) {
       const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
       ps.rho[i] = wall_density(ps.rho0[i] * (2.0 - eps) / (2.0 + eps), rho0);
@@ -140,7 +140,7 @@ template <int D>
 void damp_fluid_velocities(Level<D>& L, double factor) {
   if (factor == 1.0) return;
   ParticleSet<D>& ps = L.ps;
-  exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
     if (ps.kind[i] == Kind::fluid) ps.vel[i] *= factor;
   });
 }

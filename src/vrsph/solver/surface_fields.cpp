@@ -61,7 +61,7 @@ void SurfaceFields<D>::take_refresh(double since_last) {
   const bool rate = since_last > 0.0 && acc_ref.size() == n;
   acc_rate.resize(n);
   acc_ref.resize(n);
-  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t i) {
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(n), [&](std::int64_t i) {
     const bool both = norm2(acc_st[i]) > 0.0 && norm2(acc_ref[i]) > 0.0;
     acc_rate[i] = rate && both ? (acc_st[i] - acc_ref[i]) * (1.0 / since_last) : Vec<D>{};
     acc_ref[i] = acc_st[i];
@@ -72,7 +72,7 @@ template <int D>
 void SurfaceFields<D>::extrapolate(double tau) {
   if (acc_ref.empty()) return;  // nothing refreshed yet: acc_st as held
   acc_st.resize(acc_ref.size());
-  exec::for_each(static_cast<std::int64_t>(acc_st.size()),
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(acc_st.size()),
                  [&](std::int64_t i) { acc_st[i] = acc_ref[i] + acc_rate[i] * tau; });
 }
 

@@ -111,7 +111,7 @@ const T* padded_lambda(SurfaceFields<D>& sf, std::size_t n) {
   ();
   col.resize(n + kBlockPad);
   std::fill(col.begin() + static_cast<std::ptrdiff_t>(n), col.end(), T(0));
-  exec::for_each(static_cast<std::int64_t>(n),
+  exec::for_each(exec::in_shares, static_cast<std::int64_t>(n),
                  [&](std::int64_t i) { col[i] = static_cast<T>(sf.lambda[i]); });
   return col.data();
 }
@@ -215,7 +215,7 @@ void curvature_pass(const SolverParams<D>& prm, const ParticleSet<D>& ps, const 
     normal_col[k].resize(ps.size() + kBlockPad);
     std::fill(normal_col[k].begin() + n, normal_col[k].end(), T(0));
   }
-  exec::for_each(n, [&](std::int64_t i) {
+  exec::for_each(exec::in_shares, n, [&](std::int64_t i) {
     for (int k = 0; k < D; ++k) normal_col[k][i] = static_cast<T>(sf.normal[i][k]);
   });
   using S = SurfaceColumns<D, D + 1, T>;
