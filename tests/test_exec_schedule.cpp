@@ -133,6 +133,10 @@ TEST(ExecLaunch, SameResultsAloneOnTheTeamAndTuned) {
           for (std::int64_t i = a; i < b; ++i) v[i] += 2 * i + 2;
         });
         exec::for_each_dynamic(n, 16, [&](std::int64_t i) { v[i] += 3 * i + 3; });
+        exec::for_each(exec::in_shares, n, [&](std::int64_t i) { v[i] += 5 * i + 5; });
+        exec::for_each_range(exec::in_shares, n, 32, [&](std::int64_t a, std::int64_t b) {
+          for (std::int64_t i = a; i < b; ++i) v[i] += 6 * i + 6;
+        });
         exec::for_each_with<NoScratch>(n, 8,
                                        [&](std::int64_t i, NoScratch&) { v[i] += 4 * i + 4; });
         const Count c = exec::for_each_gather<NoScratch, Count>(
