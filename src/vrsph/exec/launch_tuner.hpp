@@ -17,13 +17,16 @@
 // form (each index writes only its own entries, and reductions are order-independent), so a loop
 // gives the same bits on one thread as on the team.
 //
-// Only the cheap static launches are tuned (for_each, for_each_range, any_of, first_index), and
-// of these not the loops tagged exec::in_shares (exec/parallel.hpp), whose per-particle writes the
-// next neighbour pass reads share by share. A trial times the loop alone, not what follows it: a
-// loop run on one thread leaves the other thread's share in its own core's cache, and the pass
-// after it pays for that. Measured on two threads of an AMD EPYC (docs/validation.md): with the
-// gather and dynamic launches tuned too, the uniform drop of issue #19 ran 10% slower; with the
-// sort's permutations, the packing and the integrator tuned, 9% slower than with them on the team.
+// Only the cheap static launches are tuned (for_each, for_each_range, any_of, first_index). Those
+// tagged exec::in_shares (exec/parallel.hpp), whose per-particle writes the next neighbour pass
+// reads share by share, are tuned only below 2^11 indices. A trial times the loop, not what
+// follows it: a loop run on one thread leaves the other thread's share in its own core's cache,
+// and the pass after it pays for that, the more the larger the level. Measured on two threads of
+// an AMD EPYC (docs/validation.md): with the gather and dynamic launches tuned too, the uniform
+// drop of issue #19 (5,027 particles) ran 10% slower; with the sort's permutations, the packing
+// and the integrator tuned at every size, 9% slower than with them on the team; tuned below 2^11,
+// the three-level impact case (levels of a few hundred to 1,500 particles) runs in 0.65 of the
+// time with every loop on the team, against 0.80 with the in_shares loops always on the team.
 #pragma once
 
 #include <omp.h>
@@ -71,16 +74,17 @@ struct Launch {
 
 class LaunchTuner {
  public:
-  static constexpr int kTunedBits = 16;  // loops of n < 2^16 indices are tuned
-  static constexpr int kTrials = 8;      // timed calls of each kind per trial
-  static constexpr int kRetrial = 4096;  // calls of a size class between trials
+  static constexpr int kTunedBits = 16;     // loops of n < 2^16 indices are tuned
+  static constexpr int kInSharesBits = 11;  // exec::in_shares loops: n < 2^11 only
+  static constexpr int kTrials = 8;         // timed calls of each kind per trial
+  static constexpr int kRetrial = 4096;     // calls of a size class between trials
 
   // The choice for a loop of n indices, called by the thread that launches it.
-  Launch begin(std::int64_t n) {
+  Launch begin(std::int64_t n, int tuned_bits = kTunedBits) {
     const LaunchPolicy p = launch_policy();
     if (p != LaunchPolicy::tuned) return {p == LaunchPolicy::alone};
     if (omp_get_max_threads() == 1) return {true};
-    if (n >= (std::int64_t{1} << kTunedBits) || omp_in_parallel()) return {false};
+    if (n >= (std::int64_t{1} << tuned_bits) || omp_in_parallel()) return {false};
     const int c = std::bit_width(static_cast<std::uint64_t>(n));
     Class& k = classes_[static_cast<std::size_t>(c)];
     if (k.trial_left == 0) {  // decided

@@ -43,16 +43,22 @@ inline void for_each(std::int64_t n, Body&& body) {
 }
 
 // The tag of a loop whose per-particle writes the next neighbour pass reads share by share (the
-// sort's permutations, the packed columns, fields the next sweep reads): it always runs on the
-// team, so that each share is written by the core that reads it next. A trial would time the loop
-// alone, not that read: with these loops tuned, the uniform drop of issue #19 ran 5% slower on two
-// threads while its loops ran faster (docs/validation.md).
+// sort's permutations, the packed columns, fields the next sweep reads): on levels of 2^11
+// particles or more it always runs on the team, so that each share is written by the core that
+// reads it next; a trial would time the loop alone, not that read (exec/launch_tuner.hpp).
 struct InShares {};
 inline constexpr InShares in_shares{};
 
 template <class Body>
 inline void for_each(InShares, std::int64_t n, Body&& body) {
-  team_for_each(n, body);
+  static thread_local LaunchTuner tuner;
+  const Launch l = tuner.begin(n, LaunchTuner::kInSharesBits);
+  if (l.alone) {
+    for (std::int64_t i = 0; i < n; ++i) body(i);
+  } else {
+    team_for_each(n, body);
+  }
+  tuner.end(l);
 }
 
 // Thread t's share of [0, n) among nt threads: the contiguous range OpenMP's schedule(static)
@@ -94,7 +100,14 @@ inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
 
 template <class Body>
 inline void for_each_range(InShares, std::int64_t n, std::int64_t block, Body&& body) {
-  team_for_each_range(n, block, body);
+  static thread_local LaunchTuner tuner;
+  const Launch l = tuner.begin(n, LaunchTuner::kInSharesBits);
+  if (l.alone) {
+    for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
+  } else {
+    team_for_each_range(n, block, body);
+  }
+  tuner.end(l);
 }
 
 // body(i) for every i in [0, n), handed out in chunks of `chunk` consecutive indices: neighbour
