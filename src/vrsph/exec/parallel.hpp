@@ -32,7 +32,7 @@ inline void team_for_each(std::int64_t n, Body&& body) {
 
 template <class Body>
 inline void for_each(std::int64_t n, Body&& body) {
-  static thread_local LaunchTuner tuner;  // per launching thread: no shared state
+  static LaunchTuner tuner;  // one per call site (exec/launch_tuner.hpp)
   const Launch l = tuner.begin(n);
   if (l.alone) {
     for (std::int64_t i = 0; i < n; ++i) body(i);
@@ -51,7 +51,7 @@ inline constexpr InShares in_shares{};
 
 template <class Body>
 inline void for_each(InShares, std::int64_t n, Body&& body) {
-  static thread_local LaunchTuner tuner;
+  static LaunchTuner tuner;
   const Launch l = tuner.begin(n, LaunchTuner::kInSharesBits);
   if (l.alone) {
     for (std::int64_t i = 0; i < n; ++i) body(i);
@@ -88,7 +88,7 @@ inline void team_for_each_range(std::int64_t n, std::int64_t block, Body&& body)
 
 template <class Body>
 inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
-  static thread_local LaunchTuner tuner;
+  static LaunchTuner tuner;
   const Launch l = tuner.begin(n);
   if (l.alone) {
     for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
@@ -100,7 +100,7 @@ inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
 
 template <class Body>
 inline void for_each_range(InShares, std::int64_t n, std::int64_t block, Body&& body) {
-  static thread_local LaunchTuner tuner;
+  static LaunchTuner tuner;
   const Launch l = tuner.begin(n, LaunchTuner::kInSharesBits);
   if (l.alone) {
     for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
@@ -186,7 +186,7 @@ inline double max_of(std::int64_t n, int chunk, double floor, Body&& body) {
 // thread count.
 template <class Pred>
 inline bool any_of(std::int64_t n, std::int64_t chunk, Pred&& pred) {
-  static thread_local LaunchTuner tuner;
+  static LaunchTuner tuner;
   const Launch l = tuner.begin(n);
   if (l.alone) {
     bool hit = false;
@@ -218,7 +218,7 @@ inline bool any_of(std::int64_t n, std::int64_t chunk, Pred&& pred) {
 // count (diagnoses name the same particle).
 template <class Pred>
 inline std::int64_t first_index(std::int64_t n, Pred&& pred) {
-  static thread_local LaunchTuner tuner;
+  static LaunchTuner tuner;
   const Launch l = tuner.begin(n);
   std::int64_t first = n;
   if (l.alone) {
