@@ -30,16 +30,23 @@ inline void team_for_each(std::int64_t n, Body&& body) {
   for (std::int64_t i = 0; i < n; ++i) body(i);
 }
 
-template <class Body>
-inline void for_each(std::int64_t n, Body&& body) {
-  static LaunchTuner tuner;  // one per call site (exec/launch_tuner.hpp)
-  const Launch l = tuner.begin(n);
+// for_each over [0, n) on the team or alone, as its call site's tuner chose for loops of fewer
+// than 2^kBits indices. The tuner is one per call site: Body is the call site's own lambda type.
+template <int kBits, class Body>
+inline void tuned_for_each(std::int64_t n, Body&& body) {
+  static LaunchTuner tuner;
+  const Launch l = tuner.begin(n, kBits);
   if (l.alone) {
     for (std::int64_t i = 0; i < n; ++i) body(i);
   } else {
     team_for_each(n, body);
   }
   tuner.end(l);
+}
+
+template <class Body>
+inline void for_each(std::int64_t n, Body&& body) {
+  tuned_for_each<LaunchTuner::kTunedBits>(n, body);
 }
 
 // The tag of a loop whose per-particle writes the next neighbour pass reads share by share (the
@@ -51,14 +58,7 @@ inline constexpr InShares in_shares{};
 
 template <class Body>
 inline void for_each(InShares, std::int64_t n, Body&& body) {
-  static LaunchTuner tuner;
-  const Launch l = tuner.begin(n, LaunchTuner::kInSharesBits);
-  if (l.alone) {
-    for (std::int64_t i = 0; i < n; ++i) body(i);
-  } else {
-    team_for_each(n, body);
-  }
-  tuner.end(l);
+  tuned_for_each<LaunchTuner::kInSharesBits>(n, body);
 }
 
 // Thread t's share of [0, n) among nt threads: the contiguous range OpenMP's schedule(static)
@@ -86,10 +86,11 @@ inline void team_for_each_range(std::int64_t n, std::int64_t block, Body&& body)
   }
 }
 
-template <class Body>
-inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
+// for_each_range on the team or alone, as tuned_for_each.
+template <int kBits, class Body>
+inline void tuned_for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
   static LaunchTuner tuner;
-  const Launch l = tuner.begin(n);
+  const Launch l = tuner.begin(n, kBits);
   if (l.alone) {
     for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
   } else {
@@ -99,15 +100,13 @@ inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
 }
 
 template <class Body>
+inline void for_each_range(std::int64_t n, std::int64_t block, Body&& body) {
+  tuned_for_each_range<LaunchTuner::kTunedBits>(n, block, body);
+}
+
+template <class Body>
 inline void for_each_range(InShares, std::int64_t n, std::int64_t block, Body&& body) {
-  static LaunchTuner tuner;
-  const Launch l = tuner.begin(n, LaunchTuner::kInSharesBits);
-  if (l.alone) {
-    for (std::int64_t a = 0; a < n; a += block) body(a, std::min(n, a + block));
-  } else {
-    team_for_each_range(n, block, body);
-  }
-  tuner.end(l);
+  tuned_for_each_range<LaunchTuner::kInSharesBits>(n, block, body);
 }
 
 // body(i) for every i in [0, n), handed out in chunks of `chunk` consecutive indices: neighbour
