@@ -75,7 +75,7 @@ void check_sums_match(Precision precision) {
   std::vector<Vec<D>> grad_c(c.ps.size());
   std::vector<double> div_r(c.ps.size(), -7.0);
   const Pass1Out<D> shift{grad_c.data(), div_r.data()};
-  compute_forces_packed<D>(c.prm, c.ps, c.grid, ws, nullptr, false, &shift);
+  compute_forces_packed<D>(c.prm, c.ps, c.grid, ws, nullptr, nullptr, &shift);
 
   // Round-off: float pair terms (mixed) or double ones, summed in another order near the walls.
   const bool mixed = precision == Precision::mixed;
@@ -169,7 +169,7 @@ void check_whole_pass_matches(Precision precision) {
   in.sums_grad_w = true;
   const Pass1Out<D> whole = in.pass1_out(true);
   ASSERT_EQ(whole.terms, (kPass1Terms<D, true>));
-  compute_forces_packed<D>(c.prm, c.ps, c.grid, ws, nullptr, false, &whole);
+  compute_forces_packed<D>(c.prm, c.ps, c.grid, ws, nullptr, nullptr, &whole);
 
   const bool mixed = precision == Precision::mixed;
   const double tol = mixed ? 2e-6 : 1e-13, h = c.prm.h;

@@ -183,8 +183,8 @@ void Simulation<D>::step_one_level(std::size_t k, double t0, double dt) {
 }
 
 // One force evaluation of level k at t_eval; at the corrector stage the net force the
-// corrections remove is added to the impulse, times the step's dt. The buffer particles'
-// reaction (vres_conserve_momentum) feeds only that impulse: the predictor's stage skips it.
+// corrections remove is added to the impulse, times the step's dt. The fluid's pair
+// acceleration (vres_conserve_momentum) feeds only that impulse: the predictor's stage skips it.
 template <int D>
 ForceStats Simulation<D>::evaluate_level(std::size_t k, double t_eval, bool corrector_stage,
                                          double dt) {
@@ -193,8 +193,7 @@ ForceStats Simulation<D>::evaluate_level(std::size_t k, double t_eval, bool corr
   const bool after = surface_fields(k, k + 1, t_eval, corrector_stage);  // passes 2, 3 after
   double t0 = now_seconds();
   const bool st = L.prm.sigma > 0.0;
-  ForceStats s =
-      level_forces(L, st && !after, corrector_stage && coupling_.wants_buffer_reaction());
+  ForceStats s = level_forces(L, st && !after, corrector_stage && coupling_.wants_pair_acc());
   times_.forces += now_seconds() - t0;
   if (after) refresh_after_forces(k, k + 1, t_eval, &s);
   t0 = now_seconds();

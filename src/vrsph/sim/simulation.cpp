@@ -205,7 +205,7 @@ ForceStats Simulation<D>::evaluate_forces(double t_eval, bool corrector_stage) {
   const bool st = levels_[0].prm.sigma > 0.0;
   level_stats_.resize(levels_.size());
   for (std::size_t k = 0; k < levels_.size(); ++k)
-    level_stats_[k] = level_forces(levels_[k], st && !after, coupling_.wants_buffer_reaction());
+    level_stats_[k] = level_forces(levels_[k], st && !after, coupling_.wants_pair_acc());
   times_.forces += now_seconds() - t0;
   if (after) refresh_after_forces(0, levels_.size(), t_eval, level_stats_.data());
   t0 = now_seconds();

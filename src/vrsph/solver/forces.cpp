@@ -201,13 +201,13 @@ struct ForceCall {
   const CellGrid<D>& grid;
   const LevelColumns<D>& cols;
   const Vec<D>* extra_acc;
-  bool buffer_reaction;
+  Vec<D>* pair_acc;
   const Pass1Out<D>* pass1;
 };
 
 template <int D, ViscosityModel VM, DiffusionModel DM, class T, int kSurf>
 ForceStats force_pass(const ForceCall<D>& call) {
-  const auto& [prm, ps, grid, cols, extra_acc, buffer_reaction, pass1] = call;
+  const auto& [prm, ps, grid, cols, extra_acc, pair_acc, pass1] = call;
   if (grid.reach() > 4) throw std::invalid_argument("force pass: more than 4 cells per support");
   const auto& cells = grid.particle_cells();
   const StateRuns<D, T>& st = cols.template state_of<T>();
@@ -216,16 +216,8 @@ ForceStats force_pass(const ForceCall<D>& call) {
     const auto i = static_cast<std::uint32_t>(ii);
     const Self<T> me(st, i);
     ForceSums s;
-    if (ps.kind[i] == Kind::buffer) {
-      // v and rho come from another level: acc is only the reaction of this level's fluid and
-      // buffer neighbours (walls left out), from which the coupling measures the net force the
-      // buffer exerts on the fluid. Buffer-buffer pairs cancel in that sum. Without it
-      // (buffer_reaction false) a buffer particle needs no neighbour at all.
-      if (buffer_reaction) {
-        sc.spans_of(grid, cells[i]);
-        fluid_sweep<D, VM, DM, false, 0>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
-      }
-      ps.acc[i] = acceleration<D>(s);
+    if (ps.kind[i] == Kind::buffer) {  // v and rho come from another level: nothing to sum
+      ps.acc[i] = Vec<D>{};
       ps.drho[i] = 0.0;
       return;
     }
@@ -237,6 +229,7 @@ ForceStats force_pass(const ForceCall<D>& call) {
         wall_sweep<D, ForceCol<D>::vol>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
     } else {
       fluid_sweep_for<D, VM, DM, false, kSurf>(prm, me, st, sc.fluid.span, sc.fluid.count, s);
+      if (pair_acc != nullptr) pair_acc[i] = acceleration<D>(s);  // fluid and buffer neighbours
       fluid_sweep_for<D, VM, DM, true, kSurf>(prm, me, st, sc.wall.span, sc.wall.count, s);
       if constexpr (kSurf > 0) pass1->store(i, s.s + 2 + D, shepard_self(ps, cols, i, w0));
     }
@@ -291,20 +284,20 @@ ForceStats dispatch_pass1(const ForceCall<D>& call) {
 template <int D>
 ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                                 const Vec<D>* extra_acc, bool buffer_reaction,
+                                 const Vec<D>* extra_acc, Vec<D>* pair_acc,
                                  const Pass1Out<D>* pass1) {
   ps.acc.resize(ps.size());
   ps.drho.resize(ps.size());
-  const ForceCall<D> call{prm, ps, grid, cols, extra_acc, buffer_reaction, pass1};
+  const ForceCall<D> call{prm, ps, grid, cols, extra_acc, pair_acc, pass1};
   return with_pair_type(prm.precision,
                         [&](auto t) { return dispatch_pass1<D, decltype(t)>(call); });
 }
 
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
-                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc, bool buffer_reaction) {
+                          ForceWorkspace<D>& ws, const Vec<D>* extra_acc, Vec<D>* pair_acc) {
   ws.pack(ps, grid, prm.eos, prm.precision);
-  return compute_forces_packed(prm, ps, grid, ws, extra_acc, buffer_reaction);
+  return compute_forces_packed(prm, ps, grid, ws, extra_acc, pair_acc);
 }
 
 template <int D>
@@ -315,15 +308,15 @@ ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const 
 
 template ForceStats compute_forces_packed<2>(const SolverParams<2>&, ParticleSet<2>&,
                                              const CellGrid<2>&, const LevelColumns<2>&,
-                                             const Vec<2>*, bool, const Pass1Out<2>*);
+                                             const Vec<2>*, Vec<2>*, const Pass1Out<2>*);
 template ForceStats compute_forces_packed<3>(const SolverParams<3>&, ParticleSet<3>&,
                                              const CellGrid<3>&, const LevelColumns<3>&,
-                                             const Vec<3>*, bool, const Pass1Out<3>*);
+                                             const Vec<3>*, Vec<3>*, const Pass1Out<3>*);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&);
 template ForceStats compute_forces<2>(const SolverParams<2>&, ParticleSet<2>&, const CellGrid<2>&,
-                                      ForceWorkspace<2>&, const Vec<2>*, bool);
+                                      ForceWorkspace<2>&, const Vec<2>*, Vec<2>*);
 template ForceStats compute_forces<3>(const SolverParams<3>&, ParticleSet<3>&, const CellGrid<3>&,
-                                      ForceWorkspace<3>&, const Vec<3>*, bool);
+                                      ForceWorkspace<3>&, const Vec<3>*, Vec<3>*);
 
 }  // namespace vrsph

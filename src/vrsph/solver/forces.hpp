@@ -47,21 +47,22 @@ inline constexpr bool kForcePassSumsPass1 = 2 + D + kPass1Terms<D, true> <= 12;
 // ps.acc and ps.drho for every particle (acc = 0 on walls) from the columns `cols`, packed from
 // ps (LevelColumns::pack). extra_acc (null: none) is a per-particle acceleration added to the
 // fluid's, e.g. surface tension; it counts in ForceStats::max_acc.
-// buffer_reaction: buffer particles get the acceleration their level's fluid and buffer
-// neighbours exert on them (vres/momentum.hpp measures the coupling's net force from it);
-// otherwise their acc is 0. pass1 (null: none): the fluid particles' pass-1 fields go there too,
-// pass1->terms of them (shifting's, or the whole pass with G where kForcePassSumsPass1).
+// Buffer particles get acc = 0 and drho = 0 (their v and rho come from another level).
+// pair_acc (null: none): each fluid particle's acceleration from its level's fluid and buffer
+// neighbours alone (walls and extra_acc left out), from which vres/momentum.hpp measures the net
+// force the buffer exerts on the fluid. pass1 (null: none): the fluid particles' pass-1 fields go
+// there too, pass1->terms of them (shifting's, or the whole pass with G where kForcePassSumsPass1).
 template <int D>
 ForceStats compute_forces_packed(const SolverParams<D>& prm, ParticleSet<D>& ps,
                                  const CellGrid<D>& grid, const LevelColumns<D>& cols,
-                                 const Vec<D>* extra_acc = nullptr, bool buffer_reaction = false,
+                                 const Vec<D>* extra_acc = nullptr, Vec<D>* pair_acc = nullptr,
                                  const Pass1Out<D>* pass1 = nullptr);
 
 // The same, packing ps into ws first.
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid,
                           ForceWorkspace<D>& ws, const Vec<D>* extra_acc = nullptr,
-                          bool buffer_reaction = false);
+                          Vec<D>* pair_acc = nullptr);
 // The same with a workspace of its own (tests, one-off evaluations).
 template <int D>
 ForceStats compute_forces(const SolverParams<D>& prm, ParticleSet<D>& ps, const CellGrid<D>& grid);

@@ -29,6 +29,10 @@ struct Level {
   // one dt), which the integrator adds (fluid_acceleration) instead of a pass that adds it to
   // ps.acc. Zero after each force pass until a correction sets it.
   Vec<D> fluid_acc_uniform{};
+  // Fluid particles only: the acceleration of the last force pass from the level's fluid and
+  // buffer neighbours (compute_forces_packed's pair_acc), where vres_conserve_momentum asks for
+  // it (vres/momentum.hpp); empty elsewhere.
+  std::vector<Vec<D>> pair_acc;
 };
 
 // The acceleration the integrator gives fluid particle i (gravity excluded): ps.acc[i] plus the

@@ -39,14 +39,15 @@ bool surface_pass_sums_in_forces(Level<D>& L) {
 }
 
 template <int D>
-ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction) {
+ForceStats level_forces(Level<D>& L, bool capillary, bool pair_acc) {
   const Pass1InForces mode = L.sf.in_forces;
+  if (pair_acc) L.pair_acc.resize(L.ps.size());
   L.sf.in_forces = Pass1InForces::none;
   const Pass1Out<D> pass1 = L.sf.pass1_out(mode == Pass1InForces::full);
   L.fluid_acc_uniform = Vec<D>{};
-  return compute_forces_packed(L.prm, L.ps, L.grid, L.cols,
-                               capillary ? L.sf.acc_st.data() : nullptr, buffer_reaction,
-                               mode == Pass1InForces::none ? nullptr : &pass1);
+  return compute_forces_packed(
+      L.prm, L.ps, L.grid, L.cols, capillary ? L.sf.acc_st.data() : nullptr,
+      pair_acc ? L.pair_acc.data() : nullptr, mode == Pass1InForces::none ? nullptr : &pass1);
 }
 
 template <int D>

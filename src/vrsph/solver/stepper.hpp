@@ -35,10 +35,10 @@ template <int D>
 void surface_pass_curvature(Level<D>& L);
 
 // Pair forces on the packed columns, with the capillary acceleration added when `capillary`;
-// buffer_reaction as in compute_forces_packed; with the fluid particles' pass-1 sums after
-// surface_pass_shifting_sums or surface_pass_sums_in_forces.
+// with `pair_acc`, L.pair_acc as compute_forces_packed gives it (vres_conserve_momentum); with
+// the fluid particles' pass-1 sums after surface_pass_shifting_sums or surface_pass_sums_in_forces.
 template <int D>
-ForceStats level_forces(Level<D>& L, bool capillary, bool buffer_reaction);
+ForceStats level_forces(Level<D>& L, bool capillary, bool pair_acc);
 // The capillary acceleration of passes 2 and 3 run after the force pass (a refresh whose pass 1
 // the force pass summed) added to the fluid's, and s.max_acc taken anew over the sums: what
 // level_forces with `capillary` gives, in two steps.

@@ -186,7 +186,7 @@ void LevelCoupling<D>::after_normals(std::vector<Level<D>>& levels) const {
 // the net capillary force F_st, removed as a uniform acceleration of the fluid.
 template <int D>
 void LevelCoupling<D>::after_forces(std::vector<Level<D>>& levels, bool capillary) const {
-  const bool coupling = wants_buffer_reaction();
+  const bool coupling = wants_pair_acc();
   const bool net_st = opt_.zero_net_surface_force && capillary;
   if (!coupling && !net_st) return;
   Vec<D> f{};
@@ -250,10 +250,11 @@ Vec<D> LevelCoupling<D>::net_force(const std::vector<Level<D>>& levels, std::siz
   Vec<D> f{};
   const Level<D>& L = levels[l];
   const bool st = opt_.zero_net_surface_force && capillary && L.sf.acc_st.size() == L.ps.size();
-  const bool coupling = wants_buffer_reaction();
+  const bool coupling = wants_pair_acc();
   for (std::size_t i = 0; i < L.ps.size(); ++i) {
-    if (coupling && L.ps.kind[i] == Kind::buffer) f -= buffer_mass(L, i) * L.ps.acc[i];
-    if (st && L.ps.kind[i] == Kind::fluid) f += L.ps.mass_of(i) * L.sf.acc_st[i];
+    if (L.ps.kind[i] != Kind::fluid) continue;
+    if (coupling) f += weighted_mass(L, i) * L.pair_acc[i];
+    if (st) f += L.ps.mass_of(i) * L.sf.acc_st[i];
   }
   return f;
 }

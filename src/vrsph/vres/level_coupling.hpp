@@ -59,8 +59,9 @@ class LevelCoupling {
     return multi_level() && !opt_.surface_across_levels &&
            opt_.buffer_surface != BufferSurface::own;
   }
-  // Whether the force pass must give buffer particles their reaction (momentum.hpp).
-  bool wants_buffer_reaction() const { return opt_.conserve_momentum && multi_level(); }
+  // Whether the force pass must keep the fluid's pair acceleration (Level::pair_acc), from which
+  // momentum.hpp measures the net force of the buffers.
+  bool wants_pair_acc() const { return opt_.conserve_momentum && multi_level(); }
   const LevelLink<D>& link(std::size_t k) const { return links_[k]; }
   LevelLink<D>& link(std::size_t k) { return links_[k]; }
 
@@ -96,14 +97,14 @@ class LevelCoupling {
   CouplingTally after_level_step(std::vector<Level<D>>& levels, std::size_t l, double dt,
                                  const std::vector<double>& donor_a, std::uint64_t& next_id,
                                  const std::function<void()>& sort);
-  // The net force that after_forces would remove, from level l alone: F_c of its buffers
-  // (conserve_momentum) plus F_st of its fluid (zero_net_force, when capillary).
+  // The net force that after_forces would remove, from level l alone: F_c of its buffer on its
+  // fluid (conserve_momentum) plus F_st of its fluid (zero_net_force, when capillary).
   Vec<D> net_force(const std::vector<Level<D>>& levels, std::size_t l, bool capillary) const;
   // Removes an impulse (the sum of net_force x dt over the levels' corrector stages since the
   // levels last met) as a uniform velocity of all fluid.
   void remove_impulse(std::vector<Level<D>>& levels, const Vec<D>& impulse) const;
   bool corrects_net_force(bool capillary) const {
-    return wants_buffer_reaction() || (opt_.zero_net_surface_force && capillary);
+    return wants_pair_acc() || (opt_.zero_net_surface_force && capillary);
   }
 
  private:

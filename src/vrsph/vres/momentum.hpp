@@ -6,10 +6,15 @@
 //   so the level's fluid-fluid pairs exchange momentum exactly. Across levels the coupling is
 //   one-sided: level A's fluid feels A's buffer particles, which stand in for B's fluid, and
 //   B's fluid feels B's buffer, standing in for A's; nothing makes the two forces opposite. Their
-//   sum F_c = F_A<-bufA + F_B<-bufB is momentum created by the coupling. The force a level's
-//   buffer exerts on its fluid is minus the reaction its buffer particles receive from that fluid,
-//   F_<-buf = -sum_buffer m_j a_j (buffer-buffer pairs cancel in the sum), so F_c is measured
-//   exactly from the buffer accelerations (forces.cpp computes them only for this option).
+//   sum F_c = F_A<-bufA + F_B<-bufB is momentum created by the coupling. Since the fluid-fluid
+//   pairs of a level cancel in the sum over its fluid, the force its buffer exerts on its fluid
+//   is the fluid's whole pair force from its fluid and buffer neighbours,
+//   F_<-buf = sum_fluid omega_i m_i a_pair,i (Level::pair_acc, walls and surface tension left
+//   out; omega_i the volume weight of LevelColumns::weight, 1 without numerics.vres_buffer_ramp).
+//   Removing it leaves the fluid's momentum changed by walls, gravity and surface tension alone,
+//   to the round-off of this double sum (the reaction summed over the buffer particles, -sum_buffer
+//   omega_j m_j a_j, is the same force up to the float round-off of each pair, and cost the VR drop
+//   a neighbour sweep of every buffer particle: 5% of its wall time, docs/validation.md).
 //   The same holds for the kind changes after a step: fluid that enters a buffer leaves the
 //   fluid set with its momentum, and buffer particles that become fluid bring an interpolated
 //   velocity, so the fluid momentum jumps by dP_c. The correction removes F_c as a uniform
@@ -91,22 +96,28 @@ double fluid_mass(const std::vector<Level<D>>& levels) {
   });
 }
 
-// The mass of buffer particle i as its level's sums see it: m_i omega_i (LevelColumns::weight,
-// numerics.vres_buffer_ramp), so that its reaction balances the weighted force it exerts.
+// The mass of particle i as its level's sums see it: m_i omega_i (LevelColumns::weight,
+// numerics.vres_buffer_ramp), so that the pair forces it exerts and receives balance.
 template <int D>
-double buffer_mass(const Level<D>& L, std::size_t i) {
+double weighted_mass(const Level<D>& L, std::size_t i) {
   return L.cols.weight.empty() ? L.ps.mass_of(i) : L.cols.weight[i] * L.ps.mass_of(i);
 }
 
-// F_c: the net force of all buffers on the fluid of their level, -sum_buffer m_j omega_j a_j.
+// F_c of level L: the net pair force of its fluid and buffer neighbours on its fluid, that is
+// the force of its buffer, sum_fluid omega_i m_i a_pair,i (in index order).
+template <int D>
+Vec<D> level_coupling_force(const Level<D>& L) {
+  Vec<D> f{};
+  for (std::size_t i = 0; i < L.ps.size(); ++i)
+    if (L.ps.kind[i] == Kind::fluid) f += weighted_mass(L, i) * L.pair_acc[i];
+  return f;
+}
+
+// F_c of all levels.
 template <int D>
 Vec<D> coupling_net_force(const std::vector<Level<D>>& levels) {
   Vec<D> f{};
-  for (const Level<D>& L : levels) {
-    for (std::size_t i = 0; i < L.ps.size(); ++i) {
-      if (L.ps.kind[i] == Kind::buffer) f -= buffer_mass(L, i) * L.ps.acc[i];
-    }
-  }
+  for (const Level<D>& L : levels) f += level_coupling_force(L);
   return f;
 }
 
