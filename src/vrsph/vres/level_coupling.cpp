@@ -268,6 +268,7 @@ void LevelCoupling<D>::remove_impulse(std::vector<Level<D>>& levels, const Vec<D
 template <int D>
 CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, std::size_t l,
                                                  double dt, const std::vector<double>& donor_a,
+                                                 const std::vector<double>& substep_from,
                                                  std::uint64_t& next_id,
                                                  const std::function<void()>& sort) {
   CouplingTally tally;
@@ -279,7 +280,9 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
                               next_id, tally);
   update_kinds(levels[l], links_[l], tally);
   if (changed_since_sort(moved, tally)) sort();
-  if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donor_a) > 0) sort();
+  if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donor_a, substep_from) >
+      0)
+    sort();
   if (opt_.conserve_momentum && fluid_changed(tally))
     remove_impulse(levels, fluid_momentum(levels, mass) - p_before);
   return tally;
