@@ -75,16 +75,16 @@ TEST(VresSubstep, BufferValuesFollowTheParentInTime) {
 
   // One buffer particle moves by 0.1 h of the parent (beyond the drift): formed anew.
   ParticleSet<2>& F = levels[1].ps;
-  const std::size_t moved =
-      static_cast<std::size_t>(std::find(F.kind.begin(), F.kind.end(), Kind::buffer) - F.kind.begin());
+  const std::size_t moved = static_cast<std::size_t>(
+      std::find(F.kind.begin(), F.kind.end(), Kind::buffer) - F.kind.begin());
   const Vec<2> x_mid = F.pos[moved];
   F.pos[moved][0] += 0.1 * levels[0].prm.h;
   const std::vector<InterpolatedState<2>> end = from_parent(levels, 1.0);
   ASSERT_EQ(interpolate_buffers_level(levels, link, 1, tally, rule, {1.0, 1.0}, {0.5, -1.0}), 0u);
   EXPECT_LT(largest_difference(F, end), 1e-12);
   // The values where it stood half-way differ: the cached ones were not taken.
-  const InterpolatedState<2> there = interpolate_from_level(
-      x_mid, P, levels[0].grid, levels[0].prm.kernel, kVresCondLimit, 1.0);
+  const InterpolatedState<2> there =
+      interpolate_from_level(x_mid, P, levels[0].grid, levels[0].prm.kernel, kVresCondLimit, 1.0);
   EXPECT_GT(norm(there.vel - end[moved].vel), 1e-4);
 }
 

@@ -124,7 +124,7 @@ void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<
 }
 
 template <int D>
-void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
+Vec<D> update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
   ParticleSet<D>& ps = L.ps;
   std::vector<std::uint8_t> keep(ps.size(), 1);  // 0: delete; 2: kept, kind changed
   exec::for_each(static_cast<std::int64_t>(ps.size()), [&](std::int64_t i) {
@@ -144,16 +144,22 @@ void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally) {
     if (ps.kind[i] != was) keep[i] = 2;
   });
   std::size_t removed = 0;  // the deleted mass summed in index order, as on one thread
+  Vec<D> gained{};          // the fluid's momentum: + what turned fluid, - what left it
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (keep[i] == 2) ++tally.kind_changes;
+    if (keep[i] == 2) {
+      ++tally.kind_changes;
+      gained += (ps.kind[i] == Kind::fluid ? ps.mass_of(i) : -ps.mass_of(i)) * ps.vel[i];
+    }
     if (keep[i]) continue;
     ++removed;
     tally.deleted_mass += ps.mass_of(i);
+    if (ps.kind[i] == Kind::fluid) gained -= ps.mass_of(i) * ps.vel[i];
   }
-  if (removed == 0) return;
+  if (removed == 0) return gained;
   tally.deleted += removed;
   ps.compact(keep);
   L.sf.compact_held(keep);
+  return gained;
 }
 
 namespace {
@@ -347,8 +353,8 @@ template std::size_t interpolate_buffers_level<3>(std::vector<Level<3>>&, LevelL
                                                   const std::vector<double>&);
 template struct ParentEndValues<2>;
 template struct ParentEndValues<3>;
-template void update_kinds<2>(Level<2>&, const LevelLink<2>&, CouplingTally&);
-template void update_kinds<3>(Level<3>&, const LevelLink<3>&, CouplingTally&);
+template Vec<2> update_kinds<2>(Level<2>&, const LevelLink<2>&, CouplingTally&);
+template Vec<3> update_kinds<3>(Level<3>&, const LevelLink<3>&, CouplingTally&);
 template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&,
                                             const std::vector<LevelLink<2>>&, CouplingTally&,
                                             const DonorRule&);

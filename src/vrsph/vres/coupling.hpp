@@ -81,8 +81,10 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
                                  CouplingTally& tally);
 
 // Step 2 for one level (particles are compacted; the level must be re-sorted afterwards).
+// Returns the change of the level's fluid momentum, sum m v of the particles that turned fluid
+// minus that of the fluid particles that turned buffer or were deleted (in index order).
 template <int D>
-void update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally);
+Vec<D> update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally);
 
 // Step 3 for all levels (needs sorted levels). Returns the number of deleted buffer particles
 // (the levels must then be re-sorted).
