@@ -3,7 +3,7 @@
 # script that writes the Run.csv a DualSPHysics run writes, with 85,415 particles, 100 steps in
 # 2 s: 4.27075 M particle-steps/s): the peer's speed must be read back exactly, the ratio be
 # vrsph's over it, and bad options refused. bench_scaling.sh at two spacings: one csv row each,
-# the first at relative cost 1.
+# the first at relative cost 1. bench_rounds.sh and bench_pinned.sh: their ratios read back.
 #   tests/bench_scripts_test.sh VRSPH_BINARY REPO_ROOT
 set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: bench_scripts_test.sh VRSPH_BINARY REPO_ROOT" >&2; exit 2; }
@@ -70,4 +70,26 @@ got=$(echo "$rline" | sed 's/.*(rounds: \(.*\))/\1/' | tr ' ' '\n' | sort -g | x
 if "$root/scripts/bench_rounds.sh" --vrsph "$vrsph" --ratio a/zz a="$small" \
   > "$tmp/bad3.log" 2>&1; then fail "--ratio a/zz accepted"; fi
 grep -q "no configuration 'zz'" "$tmp/bad3.log" || fail "bad message: $(cat "$tmp/bad3.log")"
-echo "bench_scripts_test: ok ($line; $rline)"
+# bench_pinned.sh: A and B at once on two cores, two runs; the ratio line must be the median of
+# the per-run ratios of the walls in the JSON files, and a missing configuration refused.
+if [ "$(nproc)" -ge 2 ]; then
+  one="$root/cases/bench_dam_break_2d.toml --time 0.0002"
+  "$root/scripts/bench_pinned.sh" --vrsph "$vrsph" --runs 2 --out "$tmp/pinned" \
+    A="$one" B="@$vrsph $one --set numerics.precision=\"double\"" > "$tmp/pinned.log" 2>&1 ||
+    fail "bench_pinned.sh exited $?: $(cat "$tmp/pinned.log")"
+  pline=$(grep '^ratio A/B: median' "$tmp/pinned.log") || fail "no ratio line: $(cat "$tmp/pinned.log")"
+  want=$(python3 -c "
+import json
+w = lambda n: json.load(open('$tmp/pinned/' + n + '.json'))['wall_seconds']
+r = sorted(w('A-%d' % k) / w('B-%d' % k) for k in (1, 2))
+print('%.4f' % r[0], '%.4f' % r[1])")
+  got=$(echo "$pline" | sed 's/.*(runs: \(.*\))/\1/' | tr ' ' '\n' | sort -g | xargs)
+  [ "$got" = "$want" ] || fail "per-run ratios: got '$got', want '$want' ($pline)"
+  if "$root/scripts/bench_pinned.sh" --vrsph "$vrsph" A="$one" > "$tmp/bad4.log" 2>&1; then
+    fail "bench_pinned.sh without B accepted"
+  fi
+  grep -q "both A=" "$tmp/bad4.log" || fail "bad message: $(cat "$tmp/bad4.log")"
+else
+  pline="bench_pinned.sh not run: one core"
+fi
+echo "bench_scripts_test: ok ($line; $rline; $pline)"
