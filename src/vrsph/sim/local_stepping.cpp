@@ -13,9 +13,7 @@
 //      mass points accumulate over its own step, kinds change, and its buffer particles take
 //      rho and v from the donor levels, each donor read at the same time: a parent that is ahead
 //      is interpolated linearly between the states at the start and end of its step (pos0,
-//      vel0, rho0 and pos, vel, rho) for the mass points, and its buffer values move linearly in
-//      time towards the parent's values at the end of its step (substep_starts; vres/coupling.hpp,
-//      interpolate_buffers_level); a child has just caught up.
+//      vel0, rho0 and pos, vel, rho); a child has just caught up.
 // So a child's buffers follow the parent's motion within the parent's step, and the parent's
 // buffers take the child's values where the two meet.
 //
@@ -131,7 +129,7 @@ void Simulation<D>::advance_level(std::size_t k, double t0, double t1) {
   level_t0_[k] = t0;
   level_t1_[k] = t1;
   for (std::size_t c : children_[k]) cycle_child(c, t0, t1);
-  couple_level(k, t0, t1);
+  couple_level(k, t1 - t0, t1);
 }
 
 // Child c from t0 to t1 (its parent's step) in equal steps of a power-of-two fraction of it,
@@ -217,33 +215,19 @@ std::vector<double> Simulation<D>::donor_fractions(double t) const {
   return a;
 }
 
-// For a step of level k from t0 to t1: where it began in the step of each donor level d whose
-// last step holds it and is longer (k sub-cycles inside d's step: d is its parent, ahead), as a
-// fraction of d's step; -1 for the other levels.
 template <int D>
-std::vector<double> Simulation<D>::substep_starts(std::size_t k, double t0, double t1) const {
-  std::vector<double> from(levels_.size(), -1.0);
-  for (std::size_t d = 0; d < levels_.size(); ++d) {
-    const double d0 = level_t0_[d], d1 = level_t1_[d];
-    if (d == k || !(d1 > d0) || d0 > t0 || t1 > d1 || (d0 == t0 && d1 == t1)) continue;
-    from[d] = (t0 - d0) / (d1 - d0);
-  }
-  return from;
-}
-
-template <int D>
-void Simulation<D>::couple_level(std::size_t k, double t0, double t1) {
+void Simulation<D>::couple_level(std::size_t k, double dt, double t) {
   if (!coupling_.multi_level()) return;
-  const double w0 = now_seconds();
+  const double t0 = now_seconds();
   Level<D>& L = levels_[k];
-  const CouplingTally tally = coupling_.after_level_step(
-      levels_, k, t1 - t0, donor_fractions(t1), substep_starts(k, t0, t1), counters_.next_id,
-      [this, &L] { sort_particles(L, false); });
+  const CouplingTally tally =
+      coupling_.after_level_step(levels_, k, dt, donor_fractions(t), counters_.next_id,
+                                 [this, &L] { sort_particles(L, false); });
   counters_.created += tally.created;
   counters_.deleted += tally.deleted;
   counters_.created_mass += tally.created_mass;
   counters_.deleted_mass += tally.deleted_mass;
-  times_.coupling += now_seconds() - w0;
+  times_.coupling += now_seconds() - t0;
 }
 
 // As check_dt, for level k's own dt against its own bound.

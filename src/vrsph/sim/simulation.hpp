@@ -179,9 +179,8 @@ class Simulation {
   void cycle_child(std::size_t c, double t0, double t1);
   void step_one_level(std::size_t k, double t0, double dt);
   ForceStats evaluate_level(std::size_t k, double t_eval, bool corrector_stage, double dt);
-  void couple_level(std::size_t k, double t0, double t1);
+  void couple_level(std::size_t k, double dt, double t);
   std::vector<double> donor_fractions(double t) const;
-  std::vector<double> substep_starts(std::size_t k, double t0, double t1) const;
   void check_level_dt(std::size_t k) const;
   double effective_dt(std::size_t k) const;
   double subtree_rate(std::size_t k, double dt) const;

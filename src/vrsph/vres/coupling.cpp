@@ -1,6 +1,5 @@
 #include "vrsph/vres/coupling.hpp"
 
-#include <algorithm>
 #include <memory>
 
 #include "vrsph/exec/parallel.hpp"
@@ -164,19 +163,6 @@ Vec<D> update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally)
 
 namespace {
 
-// Buffer particle i takes the values s, or is marked for deletion (keep[i] = 0): no donor fluid in
-// reach, or outside the donor's free surface (see buffer_values).
-template <int D>
-void take_values(ParticleSet<D>& ps, std::size_t i, const InterpolatedState<D>& s,
-                 const DonorRule& rule, std::vector<std::uint8_t>& keep) {
-  if (s.shepard < kVresShepardMin || donor_fill(s) < rule.fill_min) {
-    keep[i] = 0;
-    return;
-  }
-  ps.rho[i] = s.rho;
-  ps.vel[i] = s.vel;
-}
-
 // Buffer values of level l from its donors (keep[i] = 0: delete particle i).
 template <int D>
 void buffer_values(std::vector<Level<D>>& levels, const LevelLink<D>& link, std::size_t l,
@@ -198,88 +184,13 @@ void buffer_values(std::vector<Level<D>>& levels, const LevelLink<D>& link, std:
     // which lowers the drop's pressure (2D VR droplet; docs/validation.md, "Figures formerly
     // in code comments"). On the relaxing square drop the same test dented the top crossing
     // instead.
-    take_values(ps, i, s, rule, keep);
-  });
-}
-
-// The values of a buffer particle at x against a donor at the end of its step.
-template <int D>
-typename ParentEndValues<D>::Entry end_entry(const Vec<D>& x, const DonorState<D>& dn,
-                                             const DonorRule& rule) {
-  const InterpolatedState<D> s =
-      interpolate_from_donor<D>(x, dn, kVresCondLimit, rule.shepard_fill);
-  return {x, s.rho, s.vel, !(s.shepard < kVresShepardMin || donor_fill(s) < rule.fill_min)};
-}
-
-// The entries formed at a first sub-step (has[i]: particle i's) into `ends`, by id.
-template <int D>
-void keep_formed(const ParticleSet<D>& ps,
-                 const std::vector<typename ParentEndValues<D>::Entry>& formed,
-                 const std::vector<std::uint8_t>& has, ParentEndValues<D>& ends) {
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < has.size(); ++i)
-    if (has[i]) order.push_back(i);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return ps.id[a] < ps.id[b]; });
-  for (std::size_t i : order) {
-    ends.id.push_back(ps.id[i]);
-    ends.entry.push_back(formed[i]);
-  }
-}
-
-// buffer_values for a level that may sub-cycle inside a donor's step (interpolate_buffers_level):
-// particles whose donor d has substep_from[d] >= 0 move linearly in time towards the donor's end
-// values (link.parent_end, formed anew at the first sub-step), the others as buffer_values.
-template <int D>
-void substep_buffer_values(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
-                           const DonorRule& rule, const std::vector<double>& donor_a,
-                           const std::vector<double>& substep_from,
-                           std::vector<std::uint8_t>& keep) {
-  using Entry = typename ParentEndValues<D>::Entry;
-  ParticleSet<D>& ps = levels[l].ps;
-  keep.assign(ps.size(), 1);
-  std::vector<double> read_a = donor_a;  // sub-cycled donors are read at their step's end
-  bool first = false;
-  for (std::size_t d = 0; d < levels.size(); ++d) {
-    if (substep_from[d] < 0.0) continue;
-    read_a[d] = 1.0;
-    first |= substep_from[d] == 0.0;
-  }
-  const DonorStates<D> donors(levels, l, read_a);
-  ParentEndValues<D>& ends = link.parent_end;
-  if (first) ends = {};
-  std::vector<Entry> formed(first ? ps.size() : 0);
-  std::vector<std::uint8_t> has(formed.size(), 0);
-  exec::for_each_dynamic(static_cast<std::int64_t>(ps.size()), 64, [&](std::int64_t ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    if (ps.kind[i] != Kind::buffer) return;
-    const ZoneInfo<D> z = link.region.classify(ps.pos[i]);
-    const auto d = static_cast<std::size_t>(z.donor);
-    const double from = substep_from[d];
-    if (from < 0.0) {  // as buffer_values
-      take_values(
-          ps, i,
-          interpolate_from_donor<D>(ps.pos[i], donors[z.donor], kVresCondLimit, rule.shepard_fill),
-          rule, keep);
-      return;
-    }
-    const double drift = kParentEndDrift * levels[d].prm.h;
-    Entry own;
-    const Entry* e = ends.find(ps.id[i]);
-    if (e == nullptr || norm2(ps.pos[i] - e->x) > drift * drift) {
-      own = end_entry(ps.pos[i], donors[z.donor], rule);
-      e = &own;
-      if (first) formed[i] = own, has[i] = 1;
-    }
-    if (!e->kept) {
+    if (s.shepard < kVresShepardMin || donor_fill(s) < rule.fill_min) {
       keep[i] = 0;
       return;
     }
-    const double w = (donor_a[d] - from) / (1.0 - from);  // 1 at the donor's step end
-    ps.rho[i] += w * (e->rho - ps.rho[i]);
-    ps.vel[i] += w * (e->vel - ps.vel[i]);
+    ps.rho[i] = s.rho;
+    ps.vel[i] = s.vel;
   });
-  if (first) keep_formed(ps, formed, has, ends);
 }
 
 // Deletes the particles with keep[i] = 0 (the level must be re-sorted afterwards).
@@ -302,18 +213,11 @@ std::size_t remove_unkept(Level<D>& L, const std::vector<std::uint8_t>& keep,
 }  // namespace
 
 template <int D>
-const typename ParentEndValues<D>::Entry* ParentEndValues<D>::find(std::uint64_t i) const {
-  const auto it = std::lower_bound(id.begin(), id.end(), i);
-  return it != id.end() && *it == i ? &entry[static_cast<std::size_t>(it - id.begin())] : nullptr;
-}
-
-template <int D>
-std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, LevelLink<D>& link,
+std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const LevelLink<D>& link,
                                       std::size_t l, CouplingTally& tally, const DonorRule& rule,
-                                      const std::vector<double>& donor_a,
-                                      const std::vector<double>& substep_from) {
+                                      const std::vector<double>& donor_a) {
   std::vector<std::uint8_t> keep;
-  substep_buffer_values(levels, link, l, rule, donor_a, substep_from, keep);
+  buffer_values(levels, link, l, rule, donor_a, keep);
   return remove_unkept(levels[l], keep, tally);
 }
 
@@ -343,16 +247,12 @@ template void accumulate_and_create_level<2>(std::vector<Level<2>>&, LevelLink<2
 template void accumulate_and_create_level<3>(std::vector<Level<3>>&, LevelLink<3>&, std::size_t,
                                              double, const std::vector<double>&, double,
                                              const DonorRule&, std::uint64_t&, CouplingTally&);
-template std::size_t interpolate_buffers_level<2>(std::vector<Level<2>>&, LevelLink<2>&,
+template std::size_t interpolate_buffers_level<2>(std::vector<Level<2>>&, const LevelLink<2>&,
                                                   std::size_t, CouplingTally&, const DonorRule&,
-                                                  const std::vector<double>&,
                                                   const std::vector<double>&);
-template std::size_t interpolate_buffers_level<3>(std::vector<Level<3>>&, LevelLink<3>&,
+template std::size_t interpolate_buffers_level<3>(std::vector<Level<3>>&, const LevelLink<3>&,
                                                   std::size_t, CouplingTally&, const DonorRule&,
-                                                  const std::vector<double>&,
                                                   const std::vector<double>&);
-template struct ParentEndValues<2>;
-template struct ParentEndValues<3>;
 template Vec<2> update_kinds<2>(Level<2>&, const LevelLink<2>&, CouplingTally&);
 template Vec<3> update_kinds<3>(Level<3>&, const LevelLink<3>&, CouplingTally&);
 template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&,

@@ -21,23 +21,6 @@
 
 namespace vrsph {
 
-// The values a sub-cycled level's buffer particles read from a parent at the end of the
-// parent's step (local time stepping): formed at the level's first step inside that parent step,
-// where each particle stood then, and read again at the later steps inside it
-// (interpolate_buffers_level), by particle id.
-template <int D>
-struct ParentEndValues {
-  struct Entry {
-    Vec<D> x{};  // where the particle stood when the entry was formed
-    double rho = 0.0;
-    Vec<D> vel{};
-    bool kept = true;  // false: no donor fluid there, or outside the donor's free surface
-  };
-  std::vector<std::uint64_t> id;  // ascending
-  std::vector<Entry> entry;       // entry[k] for id[k]
-  const Entry* find(std::uint64_t i) const;
-};
-
 // What variable resolution keeps per level beside the level itself: the part of space it owns
 // (fluid region, buffer shell, children) and the mass points on the outer faces of its buffers.
 template <int D>
@@ -45,7 +28,6 @@ struct LevelLink {
   LevelRegion<D> region;                  // single-resolution runs: level 0 owns everything
   std::vector<MassPoint<D>> mass_points;  // where particles of this level are created
   std::vector<std::vector<std::uint32_t>> point_neighbours;  // on their face (vres/flux_edge.hpp)
-  ParentEndValues<D> parent_end;  // local time stepping, within one parent step
 };
 
 // How buffer values and mass fluxes are read from the donor level (numerics.vres_buffer_fill_min,
@@ -94,19 +76,9 @@ std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
                                 const DonorRule& rule);
 
 // Step 3 for level l alone, donors as in accumulate_and_create_level. Returns the number deleted.
-// substep_from[d] >= 0: level l's step, ending at donor_a[d] of donor d's step, began at
-// substep_from[d] of it (level l sub-cycles inside d's step; -1: it does not). Buffer particles
-// with such a donor take their values by linear interpolation in time, from their values at the
-// step's start (substep_from) to the donor's values at the end of its step (1), read at donor_a:
-// the donor's end values are formed once per donor step (link.parent_end, at the first sub-step,
-// substep_from = 0) instead of once per sub-step from a donor state interpolated in time. An
-// entry is formed anew for a particle without one (created, or turned buffer, since) or that has
-// moved more than kParentEndDrift h of the donor from where its entry was formed.
 template <int D>
-std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, LevelLink<D>& link,
+std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const LevelLink<D>& link,
                                       std::size_t l, CouplingTally& tally, const DonorRule& rule,
-                                      const std::vector<double>& donor_a,
-                                      const std::vector<double>& substep_from);
-inline constexpr double kParentEndDrift = 0.05;
+                                      const std::vector<double>& donor_a);
 
 }  // namespace vrsph

@@ -281,7 +281,6 @@ void LevelCoupling<D>::remove_impulse(std::vector<Level<D>>& levels, const Vec<D
 template <int D>
 CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, std::size_t l,
                                                  double dt, const std::vector<double>& donor_a,
-                                                 const std::vector<double>& substep_from,
                                                  std::uint64_t& next_id,
                                                  const std::function<void()>& sort) {
   CouplingTally tally;
@@ -294,9 +293,7 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
   // concerned, instead of the fluid momentum of every level summed before and after.
   const Vec<D> jump = update_kinds(levels[l], links_[l], tally);
   if (changed_since_sort(moved, tally)) sort();
-  if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donor_a, substep_from) >
-      0)
-    sort();
+  if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donor_a) > 0) sort();
   if (opt_.conserve_momentum && norm2(jump) > 0.0) remove_impulse(levels, jump);
   return tally;
 }

@@ -92,12 +92,10 @@ class LevelCoupling {
 
   // Local time stepping (sim/local_stepping.cpp).
   // After a step of level l alone, of length dt: its mass points, kinds, deletions and buffer
-  // values, each donor level d read at the fraction donor_a[d] of its last step (buffer values
-  // from a donor whose step holds level l's, substep_from[d] >= 0: as interpolate_buffers_level
-  // says); `sort` re-sorts level l. With conserve_momentum the momentum jump is removed at once.
+  // values, each donor level d read at the fraction donor_a[d] of its last step; `sort` re-sorts
+  // level l. With conserve_momentum the momentum jump is removed at once.
   CouplingTally after_level_step(std::vector<Level<D>>& levels, std::size_t l, double dt,
-                                 const std::vector<double>& donor_a,
-                                 const std::vector<double>& substep_from, std::uint64_t& next_id,
+                                 const std::vector<double>& donor_a, std::uint64_t& next_id,
                                  const std::function<void()>& sort);
   // The net force that after_forces would remove, from level l alone: F_c of its buffer on its
   // fluid (conserve_momentum) plus F_st of its fluid (zero_net_force, when capillary).
