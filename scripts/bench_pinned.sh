@@ -45,15 +45,14 @@ c0=${cores%,*} c1=${cores#*,}
 [ -n "$out" ] || out=$(mktemp -d /tmp/bench_pinned.XXXXXX)
 mkdir -p "$out"
 
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
-wall_of() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['wall_seconds'])" "$1"; }
+# shellcheck source=scripts/bench_common.sh
+. "$root/scripts/bench_common.sh"
 # launch NAME CONF CORE RUN: one bench run in the background
 launch() {
-  local a=$2 bin=$vrsph
-  if [[ "$a" == @* ]]; then bin=${a%% *}; bin=${bin#@}; a=${a#* }; fi
+  split_config "$2" "$vrsph"
   # shellcheck disable=SC2086  # ARGS is a list of words
-  OMP_NUM_THREADS=1 taskset -c "$3" "$bin" bench $a --threads 1 --json "$out/$1-$4.json" \
-    > "$out/$1-$4.log" 2>&1 &
+  OMP_NUM_THREADS=1 taskset -c "$3" "$config_bin" bench $config_args --threads 1 \
+    --json "$out/$1-$4.json" > "$out/$1-$4.log" 2>&1 &
 }
 
 echo "bench_pinned.sh: $runs simultaneous run(s) of A and B on cores $c0 and $c1; $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); work in $out"

@@ -57,17 +57,16 @@ done
 [ -n "$out" ] || out=$(mktemp -d /tmp/bench_rounds.XXXXXX)
 mkdir -p "$out"
 
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
-wall_of() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['wall_seconds'])" "$1"; }
+# shellcheck source=scripts/bench_common.sh
+. "$root/scripts/bench_common.sh"
 
 echo "bench_rounds.sh: $runs round(s) of ${names[*]}; $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); work in $out"
 for round in $(seq 1 "$runs"); do
   for k in "${!names[@]}"; do
-    a=${args[$k]} bin=$vrsph
-    if [[ "$a" == @* ]]; then bin=${a%% *}; bin=${bin#@}; a=${a#* }; fi
+    split_config "${args[$k]}" "$vrsph"
     json="$out/${names[$k]}-$round.json"
     # shellcheck disable=SC2086  # ARGS is a list of words
-    "$bin" bench $a --json "$json" > "$out/${names[$k]}-$round.log" 2>&1 ||
+    "$config_bin" bench $config_args --json "$json" > "$out/${names[$k]}-$round.log" 2>&1 ||
       fail "${names[$k]} (round $round) failed: $(tail -n 3 "$out/${names[$k]}-$round.log")"
     echo "round $round: ${names[$k]} $(wall_of "$json") s"
   done

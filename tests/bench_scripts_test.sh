@@ -53,6 +53,18 @@ VRSPH=$vrsph "$root/scripts/bench_scaling.sh" "$root/cases/bench_dam_break_2d.to
   fail "bench_scaling.sh exited $?: $(cat "$tmp/scaling.log")"
 [ "$(wc -l < "$tmp/scaling/scaling.csv")" -eq 3 ] || fail "scaling.csv: $(cat "$tmp/scaling/scaling.csv")"
 awk -F, 'NR == 2 && $7 != "1.000" { exit 1 }' "$tmp/scaling/scaling.csv" || fail "first row not 1"
+# check_ratios LINE DIR NUM DEN: the per-run ratios listed in LINE's parentheses ("(rounds: ...)"
+# or "(runs: ...)") must be wall(DIR/NUM-k.json) / wall(DIR/DEN-k.json) for k = 1, 2.
+check_ratios() {
+  local want got
+  want=$(python3 -c "
+import json
+w = lambda n: json.load(open('$2/' + n + '.json'))['wall_seconds']
+r = sorted(w('$3-%d' % k) / w('$4-%d' % k) for k in (1, 2))
+print('%.4f' % r[0], '%.4f' % r[1])")
+  got=$(echo "$1" | sed -E 's/.*\((rounds|runs): (.*)\)/\2/' | tr ' ' '\n' | sort -g | xargs)
+  [ "$got" = "$want" ] || fail "per-run ratios: got '$got', want '$want' ($1)"
+}
 # bench_rounds.sh: two configurations, two rounds; the ratio line must be the median of the
 # per-round ratios of the walls in the JSON files, and a ratio naming no configuration refused.
 small="$root/cases/bench_dam_break_2d.toml --time 0.0002 --threads 1"
@@ -60,13 +72,7 @@ small="$root/cases/bench_dam_break_2d.toml --time 0.0002 --threads 1"
   a="$small" b="@$vrsph $small --set numerics.precision=\"double\"" > "$tmp/rounds.log" 2>&1 ||
   fail "bench_rounds.sh exited $?: $(cat "$tmp/rounds.log")"
 rline=$(grep '^ratio b/a: median' "$tmp/rounds.log") || fail "no ratio line: $(cat "$tmp/rounds.log")"
-want=$(python3 -c "
-import json
-w = lambda n: json.load(open('$tmp/rounds/' + n + '.json'))['wall_seconds']
-r = sorted(w('b-%d' % k) / w('a-%d' % k) for k in (1, 2))
-print('%.4f' % r[0], '%.4f' % r[1])")
-got=$(echo "$rline" | sed 's/.*(rounds: \(.*\))/\1/' | tr ' ' '\n' | sort -g | xargs)
-[ "$got" = "$want" ] || fail "per-round ratios: got '$got', want '$want' ($rline)"
+check_ratios "$rline" "$tmp/rounds" b a
 if "$root/scripts/bench_rounds.sh" --vrsph "$vrsph" --ratio a/zz a="$small" \
   > "$tmp/bad3.log" 2>&1; then fail "--ratio a/zz accepted"; fi
 grep -q "no configuration 'zz'" "$tmp/bad3.log" || fail "bad message: $(cat "$tmp/bad3.log")"
@@ -78,13 +84,7 @@ if [ "$(nproc)" -ge 2 ]; then
     A="$one" B="@$vrsph $one --set numerics.precision=\"double\"" > "$tmp/pinned.log" 2>&1 ||
     fail "bench_pinned.sh exited $?: $(cat "$tmp/pinned.log")"
   pline=$(grep '^ratio A/B: median' "$tmp/pinned.log") || fail "no ratio line: $(cat "$tmp/pinned.log")"
-  want=$(python3 -c "
-import json
-w = lambda n: json.load(open('$tmp/pinned/' + n + '.json'))['wall_seconds']
-r = sorted(w('A-%d' % k) / w('B-%d' % k) for k in (1, 2))
-print('%.4f' % r[0], '%.4f' % r[1])")
-  got=$(echo "$pline" | sed 's/.*(runs: \(.*\))/\1/' | tr ' ' '\n' | sort -g | xargs)
-  [ "$got" = "$want" ] || fail "per-run ratios: got '$got', want '$want' ($pline)"
+  check_ratios "$pline" "$tmp/pinned" A B
   if "$root/scripts/bench_pinned.sh" --vrsph "$vrsph" A="$one" > "$tmp/bad4.log" 2>&1; then
     fail "bench_pinned.sh without B accepted"
   fi
