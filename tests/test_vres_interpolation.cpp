@@ -251,20 +251,5 @@ TEST(VresInterp, ShepardBelowAGivenFill) {
   EXPECT_FALSE(bulk_all.corrected);
 }
 
-template <int D>
-void check_div_r(int n) {
-  const Donors<D> d = make_donors<D>(lattice<D>(n, 0.0), n, true);
-  const double c = 0.5 * n;
-  const auto bulk = d.at(point<D>(c + 0.3, c - 0.1, c + 0.2));
-  const auto face = d.at(point<D>(0.0, c + 0.3, c - 0.2));  // on the face plane of the block
-  std::printf("[ vres %dD div r ] bulk %.4f (cond %.3f)  face %.4f (cond %.3f)\n", D, bulk.div_r,
-              bulk.cond, face.div_r, face.cond);
-  EXPECT_NEAR(bulk.div_r, D, 0.05 * D);
-  EXPECT_NEAR(face.div_r, 0.5 * D, 0.05 * D);
-}
-
-TEST(VresInterp, DivRBulkAndFace2D) { check_div_r<2>(14); }
-TEST(VresInterp, DivRBulkAndFace3D) { check_div_r<3>(9); }
-
 }  // namespace
 }  // namespace vrsph

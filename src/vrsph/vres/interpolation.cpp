@@ -9,35 +9,33 @@ namespace {
 // The sums over the donors of the dimensionless system (see the header):
 //   a = sum_j [V_j W, V_j h grad W] (outer) [1, (x_j - x)/h],  grad W = F(r) (x - x_j);
 //   rhs[q] = sum_j f_j^q [V_j W, V_j h grad W] for f^0 = rho, f^(1+k) = vel_k;
-//   div_r = -sum_j V_j F(r) r^2;  shepard_buffer = sum over the donor's buffer particles of V_j W.
-// kFull false: only what the Shepard average reads (a[0][0], the first entry of each rhs, div_r
-// and shepard_buffer), each formed by the same operations in the same order as with kFull, so
-// the same bits.
-template <int D, bool kFull>
+//   shepard_buffer = sum over the donor's buffer particles of V_j W.
+template <int D>
 struct DonorSums {
   static constexpr int N = D + 1;
   typename SmallLu<N>::Matrix a{};
   std::array<typename SmallLu<N>::Vector, N> rhs{};
-  double div_r = 0.0;
   double shepard_buffer = 0.0;
 
+  double shepard() const { return a[0][0]; }
+  // rho, then the velocity components: the first entry of each right-hand side.
+  double value_sum(int q) const { return rhs[q][0]; }
+
   // Adds a piece of donors (within reach of x, in index order). First what each donor gives on
-  // its own (r, r^2, V W, V F: independent, so the compiler vectorises it), then the sums in donor
+  // its own (r, V W, V F: independent, so the compiler vectorises it), then the sums in donor
   // order with the accumulators in registers. Summed donor by donor with the kernel inside the
   // loop, the accumulators lived in memory (the compiler could not rule out that they alias the
   // donors' arrays) and each sqrt's latency sat in the chain (the interpolation: 14.7% of a
-  // one-thread VR drop's samples, 12.0% this way). The same operations in the same order: the same
-  // bits.
+  // one-thread VR drop's samples, 12.0% this way).
   void add_piece(const Vec<D>& x, const std::uint32_t* kept, std::uint32_t n,
                  const DonorState<D>& dn) {
     const WendlandC2<D>& kernel = dn.kernel;
-    double r[D][kWithinPiece], r2[kWithinPiece], vw[kWithinPiece], vf[kWithinPiece];
+    double r[D][kWithinPiece], vw[kWithinPiece], vf[kWithinPiece];
     for (std::uint32_t k = 0; k < n; ++k) {
       const std::uint32_t j = kept[k];
       const Vec<D> d = x - dn.pos[j];
       for (int q = 0; q < D; ++q) r[q][k] = d[q];
-      r2[k] = norm2(d);
-      const double dist = std::sqrt(r2[k]);
+      const double dist = std::sqrt(norm2(d));
       vw[k] = dn.vol[j] * kernel.w(dist);
       vf[k] = dn.vol[j] * kernel.f(dist);
     }
@@ -57,40 +55,79 @@ struct DonorSums {
       }
       const double rho = dn.rho[j];
       const Vec<D> vel = dn.vel[j];
-      for (int i = 0; i < (kFull ? N : 1); ++i) {
-        for (int c = 0; c < (kFull ? N : 1); ++c) t.a[i][c] += row[i] * col[c];
+      for (int i = 0; i < N; ++i) {
+        for (int c = 0; c < N; ++c) t.a[i][c] += row[i] * col[c];
         t.rhs[0][i] += row[i] * rho;
         for (int q = 0; q < D; ++q) t.rhs[q + 1][i] += row[i] * vel[q];
       }
-      t.div_r -= vf[k] * r2[k];
     }
     *this = t;
   }
 };
 
+// What the Shepard average reads of DonorSums, and nothing else: sum_j V_j W, sum_j V_j f_j W for
+// f = rho and each velocity component, and the buffer's share of the fill. Each sum is formed by
+// the same operations in the same order as DonorSums forms a[0][0] and rhs[q][0] (a product with
+// col[0] = 1 is exact), so the Shepard values have the same bits either way. Without the
+// gradient rows it needs no F(r), and its six accumulators stay in registers (DonorSums, copied
+// in and out of each piece, was a tenth of the interpolation's samples on the shipped VR drop).
+template <int D>
+struct ShepardSums {
+  double w = 0.0;
+  double fw[D + 1] = {};
+  double shepard_buffer = 0.0;
+
+  double shepard() const { return w; }
+  double value_sum(int q) const { return fw[q]; }
+
+  void add_piece(const Vec<D>& x, const std::uint32_t* kept, std::uint32_t n,
+                 const DonorState<D>& dn) {
+    const WendlandC2<D>& kernel = dn.kernel;
+    double vw[kWithinPiece];
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::uint32_t j = kept[k];
+      vw[k] = dn.vol[j] * kernel.w(std::sqrt(norm2(x - dn.pos[j])));
+    }
+    double sw = w, sb = shepard_buffer, s[D + 1];
+    for (int q = 0; q <= D; ++q) s[q] = fw[q];
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::uint32_t j = kept[k];
+      if (dn.ps.kind[j] != Kind::fluid) {  // buffer: counted in the fill only
+        sb += vw[k];
+        continue;
+      }
+      sw += vw[k];
+      s[0] += vw[k] * dn.rho[j];
+      const Vec<D> vel = dn.vel[j];
+      for (int q = 0; q < D; ++q) s[q + 1] += vw[k] * vel[q];
+    }
+    w = sw, shepard_buffer = sb;
+    for (int q = 0; q <= D; ++q) fw[q] = s[q];
+  }
+};
+
 // The sums over the fluid donors in reach of x (c: its stencil cell), and the fields of `out` they
-// give: the Shepard sum, div r and the buffer's share of the fill.
-template <int D, bool kFull>
-DonorSums<D, kFull> donor_sums(const Vec<D>& x, std::int64_t c, const DonorState<D>& dn,
-                               InterpolatedState<D>& out) {
-  DonorSums<D, kFull> s;
+// give: the Shepard sum and the buffer's share of the fill. Sums: DonorSums or ShepardSums.
+template <class Sums, int D>
+Sums donor_sums(const Vec<D>& x, std::int64_t c, const DonorState<D>& dn,
+                InterpolatedState<D>& out) {
+  Sums s;
   const Vec<D>* pos = dn.pos;
   auto at = [pos](std::uint32_t j) { return pos[j]; };
   for_each_within_piece(
       dn.grid, c, Group::fluid, x, dn.kernel.support2, at,
       [&](const std::uint32_t* kept, std::uint32_t n) { s.add_piece(x, kept, n, dn); });
-  out.shepard = s.a[0][0];
-  out.div_r = s.div_r;
+  out.shepard = s.shepard();
   out.shepard_buffer = s.shepard_buffer;
   return s;
 }
 
-// The Shepard average: the first entry of each right-hand side over the Shepard sum.
-template <int D, bool kFull>
-void shepard_values(const DonorSums<D, kFull>& s, InterpolatedState<D>& out) {
+// The Shepard average: each value sum over the Shepard sum.
+template <class Sums, int D>
+void shepard_values(const Sums& s, InterpolatedState<D>& out) {
   const double inv_shep = 1.0 / out.shepard;
-  out.rho = s.rhs[0][0] * inv_shep;
-  for (int k = 0; k < D; ++k) out.vel[k] = s.rhs[k + 1][0] * inv_shep;
+  out.rho = s.value_sum(0) * inv_shep;
+  for (int k = 0; k < D; ++k) out.vel[k] = s.value_sum(k + 1) * inv_shep;
 }
 
 }  // namespace
@@ -115,14 +152,14 @@ InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>
   // shepard_fill (cond stays 0 where it is not formed). The shipped VR drop (2: everywhere)
   // spends half the interpolation's time on sums that the old order formed and never read.
   if (shepard_fill > 1.0) {
-    const DonorSums<D, false> s = donor_sums<D, false>(x, c, dn, out);
+    const ShepardSums<D> s = donor_sums<ShepardSums<D>>(x, c, dn, out);
     if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
     if (donor_fill(out) < shepard_fill) {
       shepard_values(s, out);
       return out;
     }
   }
-  const DonorSums<D, true> s = donor_sums<D, true>(x, c, dn, out);
+  const DonorSums<D> s = donor_sums<DonorSums<D>>(x, c, dn, out);
   if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
   const SmallLu<D + 1> lu(s.a);
   out.cond = lu.cond_inf();

@@ -49,12 +49,10 @@ namespace vrsph {
 
 template <int D>
 struct InterpolatedState {
-  double rho = 0.0;            // kg/m^3
-  Vec<D> vel{};                // m/s
-  double shepard = 0.0;        // sum_j V_j W(x - x_j): donor support; < 0.05 means no fluid here
-  double div_r = 0.0;          // -sum_j V_j (x - x_j) . grad W: about D inside the fluid, about D/2
-                               // on a flat free surface (the free-surface test)
-  double shepard_walls = 0.0;  // sum_j V_j W(x - x_j) over the donor level's wall particles
+  double rho = 0.0;             // kg/m^3
+  Vec<D> vel{};                 // m/s
+  double shepard = 0.0;         // sum_j V_j W(x - x_j): donor support; < 0.05 means no fluid here
+  double shepard_walls = 0.0;   // sum_j V_j W(x - x_j) over the donor level's wall particles
   double shepard_buffer = 0.0;  // the same over the donor level's buffer particles
   bool corrected = false;  // true: first-order corrected; false: Shepard fallback (or no support)
   // Dimensionless cond_inf(A): infinity where singular; 0 where there is no support, or where
