@@ -72,7 +72,7 @@ struct DonorSums {
 // gradient rows it needs no F(r), and its six accumulators stay in registers (DonorSums, copied
 // in and out of each piece, was a tenth of the interpolation's samples on the shipped VR drop).
 template <int D>
-struct ShepardSums {
+struct ShepardValueSums {
   double w = 0.0;
   double fw[D + 1] = {};
   double shepard_buffer = 0.0;
@@ -107,7 +107,7 @@ struct ShepardSums {
 };
 
 // The sums over the fluid donors in reach of x (c: its stencil cell), and the fields of `out` they
-// give: the Shepard sum and the buffer's share of the fill. Sums: DonorSums or ShepardSums.
+// give: the Shepard sum and the buffer's share of the fill. Sums: DonorSums or ShepardValueSums.
 template <class Sums, int D>
 Sums donor_sums(const Vec<D>& x, std::int64_t c, const DonorState<D>& dn,
                 InterpolatedState<D>& out) {
@@ -152,7 +152,7 @@ InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>
   // shepard_fill (cond stays 0 where it is not formed). The shipped VR drop (2: everywhere)
   // spends half the interpolation's time on sums that the old order formed and never read.
   if (shepard_fill > 1.0) {
-    const ShepardSums<D> s = donor_sums<ShepardSums<D>>(x, c, dn, out);
+    const ShepardValueSums<D> s = donor_sums<ShepardValueSums<D>>(x, c, dn, out);
     if (!(out.shepard >= kVresShepardMin)) return out;  // no fluid here
     if (donor_fill(out) < shepard_fill) {
       shepard_values(s, out);
