@@ -262,7 +262,7 @@ Vec<D> LevelCoupling<D>::net_force(const std::vector<Level<D>>& levels, std::siz
     const auto i0 = static_cast<std::size_t>(b) * kBlock;
     for (std::size_t i = i0; i < std::min(n, i0 + kBlock); ++i) {
       if (L.ps.kind[i] != Kind::fluid) continue;
-      if (coupling) f += weighted_mass(L, i) * L.pair_acc[i];
+      if (coupling) add_coupling_force(L, i, f);
       if (st) f += L.ps.mass_of(i) * L.sf.acc_st[i];
     }
     part[static_cast<std::size_t>(b)] = f;

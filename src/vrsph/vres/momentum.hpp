@@ -103,13 +103,20 @@ double weighted_mass(const Level<D>& L, std::size_t i) {
   return L.cols.weight.empty() ? L.ps.mass_of(i) : L.cols.weight[i] * L.ps.mass_of(i);
 }
 
+// Adds fluid particle i's share of F_c, omega_i m_i a_pair,i, to f (one expression, so the
+// compiler fuses the product into the sum as it always did: the same bits as before).
+template <int D>
+void add_coupling_force(const Level<D>& L, std::size_t i, Vec<D>& f) {
+  f += weighted_mass(L, i) * L.pair_acc[i];
+}
+
 // F_c of level L: the net pair force of its fluid and buffer neighbours on its fluid, that is
 // the force of its buffer, sum_fluid omega_i m_i a_pair,i (in index order).
 template <int D>
 Vec<D> level_coupling_force(const Level<D>& L) {
   Vec<D> f{};
   for (std::size_t i = 0; i < L.ps.size(); ++i)
-    if (L.ps.kind[i] == Kind::fluid) f += weighted_mass(L, i) * L.pair_acc[i];
+    if (L.ps.kind[i] == Kind::fluid) add_coupling_force(L, i, f);
   return f;
 }
 
