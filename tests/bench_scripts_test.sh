@@ -85,6 +85,14 @@ if [ "$(nproc)" -ge 2 ]; then
     fail "bench_pinned.sh exited $?: $(cat "$tmp/pinned.log")"
   pline=$(grep '^ratio A/B: median' "$tmp/pinned.log") || fail "no ratio line: $(cat "$tmp/pinned.log")"
   check_ratios "$pline" "$tmp/pinned" A B
+  # the swapped pair's line: the geometric mean of the two runs' ratios
+  gline=$(grep '^ratio A/B of swapped pairs' "$tmp/pinned.log") || fail "no pair line: $(cat "$tmp/pinned.log")"
+  want=$(python3 -c "
+import json, math
+w = lambda n: json.load(open('$tmp/pinned/' + n + '.json'))['wall_seconds']
+print('%.4f' % math.sqrt(round(w('A-1') / w('B-1'), 4) * round(w('A-2') / w('B-2'), 4)))")
+  got=$(echo "$gline" | sed -E 's/.*\(pairs: (.*)\)/\1/')
+  [ "$got" = "$want" ] || fail "pair ratio: got '$got', want '$want' ($gline)"
   if "$root/scripts/bench_pinned.sh" --vrsph "$vrsph" A="$one" > "$tmp/bad4.log" 2>&1; then
     fail "bench_pinned.sh without B accepted"
   fi
