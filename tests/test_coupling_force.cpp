@@ -36,7 +36,9 @@ Vec<D> fluid_pair_force(Cloud<D> c, int buffer_side, double x_split, double& lar
   Vec<D> f{};
   largest = 0.0;
   for (std::size_t i = 0; i < c.ps.size(); ++i) {
-    if (c.ps.kind[i] == Kind::buffer) EXPECT_EQ(norm2(c.ps.acc[i]), 0.0);
+    if (c.ps.kind[i] == Kind::buffer) {
+      EXPECT_EQ(norm2(c.ps.acc[i]), 0.0);
+    }
     if (c.ps.kind[i] != Kind::fluid) continue;
     f += c.ps.mass_of(i) * pair_acc[i];
     largest = std::max(largest, c.ps.mass_of(i) * norm(pair_acc[i]));
