@@ -14,7 +14,8 @@
 #
 #   A='ARGS', B='ARGS'  `vrsph bench ARGS --threads 1` (case, --time, --set ...); ARGS may start
 #                       with `@BIN ` to run another binary (an older build)
-#   --runs N            simultaneous runs, half of them with the cores swapped (default 6)
+#   --runs N            simultaneous runs, every other one with the cores swapped (default 6;
+#                       an even number: an odd last run enters no swapped pair)
 #   --cores C0,C1       the two cores (default 0,1)
 #   --out DIR           where the JSON of every run goes (default a fresh folder under /tmp), kept
 # Nothing else should run on the machine meanwhile.
@@ -29,7 +30,7 @@ while [ $# -gt 0 ]; do
     --runs) runs=$2; shift 2 ;;
     --cores) cores=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     A=*) conf_a=${1#A=}; shift ;;
     B=*) conf_b=${1#B=}; shift ;;
     *) fail "unknown argument '$1' (configurations are A='bench arguments' B='bench arguments')" ;;
