@@ -7,7 +7,8 @@
 //    the Shepard fallback just beyond a face or a corner (3D: an edge), with values bounded
 //    by the donors';
 //  - buffer and wall particles of the donor set are ignored;
-//  - div r is about D in the bulk and about D/2 on a flat face.
+//  - the Shepard sums in lanes (interpolate_values) agree with the sums donor by donor to
+//    round-off, fluid, buffer and wall donors alike, also at a fraction of the donors' step.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -244,12 +245,56 @@ TEST(VresInterp, ShepardBelowAGivenFill) {
   EXPECT_LT(rel_error(face_fo, face), 1e-9);
   EXPECT_FALSE(face_sh.corrected);  // Shepard: sum V f W / sum V W, visibly off a linear field
   EXPECT_GT(rel_error(face_sh, face), 1e-3);
-  EXPECT_EQ(face_sh.rho, face_all.rho);
-  EXPECT_TRUE(bulk_sh.corrected);  // above the fill: unchanged
+  EXPECT_NEAR(face_sh.rho, face_all.rho, 1e-12 * face_sh.rho);  // 2.0: the sums in lanes
+  EXPECT_TRUE(bulk_sh.corrected);                               // above the fill: unchanged
   EXPECT_EQ(bulk_sh.rho, bulk_fo.rho);
   EXPECT_EQ(bulk_sh.vel[1], bulk_fo.vel[1]);
   EXPECT_FALSE(bulk_all.corrected);
 }
+
+// The Shepard sums in lanes (interpolate_values with a donor state holding columns, shepard_fill
+// above 1) against the same sums donor by donor (interpolate_from_donor): equal to round-off, with
+// fluid, buffer and wall donors, at the step's end and halfway through it, in the bulk, at a face,
+// just beyond it and where no fluid is in reach.
+template <int D>
+void check_lanes(int n) {
+  const auto pos = lattice<D>(n, 0.25);
+  std::vector<Kind> kinds(pos.size(), Kind::fluid);
+  for (std::size_t i = 0; i < pos.size(); i += 7) kinds[i] = i % 2 ? Kind::buffer : Kind::wall;
+  Donors<D> d = make_donors<D>(pos, n, false, kinds);
+  ASSERT_EQ(d.ps.pos0.size(), d.ps.size());
+  for (std::size_t j = 0; j < d.ps.size(); ++j) {  // the state at the step's start
+    for (int k = 0; k < D; ++k) d.ps.pos0[j][k] = d.ps.pos[j][k] - 0.01 * kDp * (k + 1);
+    d.ps.vel0[j] = d.ps.vel[j] * 0.9;
+    d.ps.rho0[j] = d.ps.rho[j] - 1.0;
+  }
+  const double c = 0.5 * n;
+  const Vec<D> pts[] = {point<D>(c + 0.3, c - 0.2, c + 0.1), point<D>(0.3, c, c),
+                        point<D>(-0.8, c + 0.1, c), point<D>(0.2, 0.3, 0.1), point<D>(-3.0, c, c)};
+  auto near = [](double a, double b, double scale) { EXPECT_NEAR(a, b, 1e-13 * scale); };
+  for (const double a : {1.0, 0.5}) {
+    DonorStorage<D> s1, s2;
+    const DonorState<D> plain(d.ps, d.grid, d.kernel, a, s1),
+        lanes(d.ps, d.grid, d.kernel, a, s2, true);
+    ASSERT_NE(lanes.columns, nullptr);
+    for (const Vec<D>& x : pts) {
+      const auto p = interpolate_from_donor(x, plain, kVresCondLimit, 2.0);
+      const auto q = interpolate_values(x, lanes, kVresCondLimit, 2.0);
+      near(q.shepard, p.shepard, 1.0);
+      near(q.shepard_buffer, p.shepard_buffer, 1.0);
+      near(q.shepard_walls, p.shepard_walls, 1.0);
+      near(q.rho, p.rho, kRho0);
+      for (int k = 0; k < D; ++k) near(q.vel[k], p.vel[k], 1.0);
+      EXPECT_EQ(q.corrected, p.corrected);
+    }
+    // The point beyond the face has fluid in reach, the last one none.
+    EXPECT_GT(interpolate_values(pts[2], lanes, kVresCondLimit, 2.0).shepard, kVresShepardMin);
+    EXPECT_EQ(interpolate_values(pts[4], lanes, kVresCondLimit, 2.0).shepard, 0.0);
+  }
+}
+
+TEST(VresInterp, ShepardInLanesAgreesWithDonorByDonor2D) { check_lanes<2>(12); }
+TEST(VresInterp, ShepardInLanesAgreesWithDonorByDonor3D) { check_lanes<3>(8); }
 
 }  // namespace
 }  // namespace vrsph

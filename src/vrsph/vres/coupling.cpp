@@ -12,24 +12,6 @@ namespace {
 
 constexpr double kMinSpacing = 0.5;  // x dp: no particle is created closer than this to another
 
-// The donor states of every level but l, each at its fraction of its last step (donor_a), formed
-// once for all the points of level l that read them.
-template <int D>
-class DonorStates {
- public:
-  DonorStates(const std::vector<Level<D>>& levels, std::size_t l, const std::vector<double>& a) {
-    for (std::size_t d = 0; d < levels.size(); ++d) {
-      const Level<D>& L = levels[d];
-      states_.push_back(d == l ? nullptr
-                               : std::make_unique<DonorState<D>>(L.ps, L.grid, L.prm.kernel, a[d]));
-    }
-  }
-  const DonorState<D>& operator[](int d) const { return *states_[static_cast<std::size_t>(d)]; }
-
- private:
-  std::vector<std::unique_ptr<DonorState<D>>> states_;
-};
-
 // Mass the donor flow carries across a face element in dt: -rho (u . n) dA dt (n out of the
 // buffer, so inflow into the buffer is positive).
 inline double flux_mass(double rho, double u_n, double area, double dt) {
@@ -63,8 +45,21 @@ bool crowded(const Level<D>& L, const Vec<D>& x, double min_dist, std::size_t fi
 }  // namespace
 
 template <int D>
+DonorStates<D>::DonorStates(const std::vector<Level<D>>& levels, std::size_t l,
+                            const std::vector<double>& a, const DonorRule& rule,
+                            std::vector<DonorStorage<D>>& store) {
+  if (store.size() < levels.size()) store.resize(levels.size());
+  for (std::size_t d = 0; d < levels.size(); ++d) {
+    const Level<D>& L = levels[d];
+    states_.push_back(d == l ? nullptr
+                             : std::make_unique<DonorState<D>>(L.ps, L.grid, L.prm.kernel, a[d],
+                                                               store[d], rule.shepard_fill > 1.0));
+  }
+}
+
+template <int D>
 void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
-                                 double dt, const std::vector<double>& donor_a, double entry,
+                                 double dt, const DonorStates<D>& donors, double entry,
                                  const DonorRule& rule, std::uint64_t& next_id,
                                  CouplingTally& tally) {
   if (dt <= 0.0) return;
@@ -72,13 +67,12 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
   std::vector<MassPoint<D>>& points = link.mass_points;
   const double m = L.prm.mass;
   std::vector<InterpolatedState<D>> st(points.size());
-  const DonorStates<D> donors(levels, l, donor_a);
   // Dynamic: the points beyond the fluid (most of a face that the flow does not fill) cost
   // nothing, so equal halves of the list were unequal work.
   exec::for_each_dynamic(static_cast<std::int64_t>(points.size()), 16, [&](std::int64_t q) {
     const MassPoint<D>& P = points[static_cast<std::size_t>(q)];
     st[static_cast<std::size_t>(q)] =
-        interpolate_from_donor<D>(P.x, donors[P.donor], kVresCondLimit, rule.shepard_fill);
+        interpolate_values<D>(P.x, donors[P.donor], kVresCondLimit, rule.shepard_fill);
   });
   // The share of the face element that holds fluid: the donor's kernel-smoothed indicator
   // sum_j V_j W, walls counted (next to a wall the fluid sum alone falls to about 1/2 where
@@ -116,10 +110,12 @@ void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& li
 template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
                            double dt, double entry, const DonorRule& rule, std::uint64_t& next_id,
-                           CouplingTally& tally) {
+                           CouplingTally& tally, std::vector<DonorStorage<D>>& store) {
   const std::vector<double> now(levels.size(), 1.0);
-  for (std::size_t l = 0; l < levels.size(); ++l)
-    accumulate_and_create_level(levels, links[l], l, dt, now, entry, rule, next_id, tally);
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const DonorStates<D> donors(levels, l, now, rule, store);  // after the levels before l created
+    accumulate_and_create_level(levels, links[l], l, dt, donors, entry, rule, next_id, tally);
+  }
 }
 
 template <int D>
@@ -166,17 +162,16 @@ namespace {
 // Buffer values of level l from its donors (keep[i] = 0: delete particle i).
 template <int D>
 void buffer_values(std::vector<Level<D>>& levels, const LevelLink<D>& link, std::size_t l,
-                   const DonorRule& rule, const std::vector<double>& donor_a,
+                   const DonorRule& rule, const DonorStates<D>& donors,
                    std::vector<std::uint8_t>& keep) {
   ParticleSet<D>& ps = levels[l].ps;
   keep.assign(ps.size(), 1);
-  const DonorStates<D> donors(levels, l, donor_a);
   exec::for_each_dynamic(static_cast<std::int64_t>(ps.size()), 64, [&](std::int64_t ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (ps.kind[i] != Kind::buffer) return;
     const ZoneInfo<D> z = link.region.classify(ps.pos[i]);
     const InterpolatedState<D> s =
-        interpolate_from_donor<D>(ps.pos[i], donors[z.donor], kVresCondLimit, rule.shepard_fill);
+        interpolate_values<D>(ps.pos[i], donors[z.donor], kVresCondLimit, rule.shepard_fill);
     // No donor fluid in reach, or (numerics.vres_buffer_fill_min > 0, not part of Ricci et
     // al.) outside the donor's free surface. Buffer particles follow the donor's velocity and
     // nothing pulls them back to its surface: without the second test, those carried beyond
@@ -215,9 +210,9 @@ std::size_t remove_unkept(Level<D>& L, const std::vector<std::uint8_t>& keep,
 template <int D>
 std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const LevelLink<D>& link,
                                       std::size_t l, CouplingTally& tally, const DonorRule& rule,
-                                      const std::vector<double>& donor_a) {
+                                      const DonorStates<D>& donors) {
   std::vector<std::uint8_t> keep;
-  buffer_values(levels, link, l, rule, donor_a, keep);
+  buffer_values(levels, link, l, rule, donors, keep);
   return remove_unkept(levels[l], keep, tally);
 }
 
@@ -226,40 +221,46 @@ std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const Level
 template <int D>
 std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
                                 const std::vector<LevelLink<D>>& links, CouplingTally& tally,
-                                const DonorRule& rule) {
+                                const DonorRule& rule, std::vector<DonorStorage<D>>& store) {
   const std::vector<double> now(levels.size(), 1.0);
   std::vector<std::vector<std::uint8_t>> keep(levels.size());
-  for (std::size_t l = 0; l < levels.size(); ++l)
-    buffer_values(levels, links[l], l, rule, now, keep[l]);
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const DonorStates<D> donors(levels, l, now, rule, store);
+    buffer_values(levels, links[l], l, rule, donors, keep[l]);
+  }
   std::size_t removed_all = 0;
   for (std::size_t l = 0; l < levels.size(); ++l)
     removed_all += remove_unkept(levels[l], keep[l], tally);
   return removed_all;
 }
 
+template class DonorStates<2>;
+template class DonorStates<3>;
 template void accumulate_and_create<2>(std::vector<Level<2>>&, std::vector<LevelLink<2>>&, double,
-                                       double, const DonorRule&, std::uint64_t&, CouplingTally&);
+                                       double, const DonorRule&, std::uint64_t&, CouplingTally&,
+                                       std::vector<DonorStorage<2>>&);
 template void accumulate_and_create<3>(std::vector<Level<3>>&, std::vector<LevelLink<3>>&, double,
-                                       double, const DonorRule&, std::uint64_t&, CouplingTally&);
+                                       double, const DonorRule&, std::uint64_t&, CouplingTally&,
+                                       std::vector<DonorStorage<3>>&);
 template void accumulate_and_create_level<2>(std::vector<Level<2>>&, LevelLink<2>&, std::size_t,
-                                             double, const std::vector<double>&, double,
+                                             double, const DonorStates<2>&, double,
                                              const DonorRule&, std::uint64_t&, CouplingTally&);
 template void accumulate_and_create_level<3>(std::vector<Level<3>>&, LevelLink<3>&, std::size_t,
-                                             double, const std::vector<double>&, double,
+                                             double, const DonorStates<3>&, double,
                                              const DonorRule&, std::uint64_t&, CouplingTally&);
 template std::size_t interpolate_buffers_level<2>(std::vector<Level<2>>&, const LevelLink<2>&,
                                                   std::size_t, CouplingTally&, const DonorRule&,
-                                                  const std::vector<double>&);
+                                                  const DonorStates<2>&);
 template std::size_t interpolate_buffers_level<3>(std::vector<Level<3>>&, const LevelLink<3>&,
                                                   std::size_t, CouplingTally&, const DonorRule&,
-                                                  const std::vector<double>&);
+                                                  const DonorStates<3>&);
 template Vec<2> update_kinds<2>(Level<2>&, const LevelLink<2>&, CouplingTally&);
 template Vec<3> update_kinds<3>(Level<3>&, const LevelLink<3>&, CouplingTally&);
 template std::size_t interpolate_buffers<2>(std::vector<Level<2>>&,
                                             const std::vector<LevelLink<2>>&, CouplingTally&,
-                                            const DonorRule&);
+                                            const DonorRule&, std::vector<DonorStorage<2>>&);
 template std::size_t interpolate_buffers<3>(std::vector<Level<3>>&,
                                             const std::vector<LevelLink<3>>&, CouplingTally&,
-                                            const DonorRule&);
+                                            const DonorRule&, std::vector<DonorStorage<3>>&);
 
 }  // namespace vrsph

@@ -14,9 +14,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "vrsph/solver/level.hpp"
+#include "vrsph/vres/interpolation.hpp"
 #include "vrsph/vres/region.hpp"
 
 namespace vrsph {
@@ -38,6 +40,22 @@ struct DonorRule {
   double flux_edge = 0.0;     // below this donor fill, mass points pass flux inward (flux_edge.hpp)
 };
 
+// The donor states of every level but l (vres/interpolation.hpp), each at its fraction a[d] of
+// its last step (1: its current state), formed once for all the points of level l that read them
+// before the donors change: with local time stepping, the mass points and the buffer values of
+// one level step. Their arrays live in `store` (one per level, kept by the caller from one step
+// to the next). With rule.shepard_fill above 1 they also hold the columns of the Shepard sums.
+template <int D>
+class DonorStates {
+ public:
+  DonorStates(const std::vector<Level<D>>& levels, std::size_t l, const std::vector<double>& a,
+              const DonorRule& rule, std::vector<DonorStorage<D>>& store);
+  const DonorState<D>& operator[](int d) const { return *states_[static_cast<std::size_t>(d)]; }
+
+ private:
+  std::vector<std::unique_ptr<DonorState<D>>> states_;
+};
+
 struct CouplingTally {
   std::uint64_t created = 0;
   std::uint64_t deleted = 0;
@@ -51,14 +69,14 @@ struct CouplingTally {
 template <int D>
 void accumulate_and_create(std::vector<Level<D>>& levels, std::vector<LevelLink<D>>& links,
                            double dt, double entry, const DonorRule& rule, std::uint64_t& next_id,
-                           CouplingTally& tally);
+                           CouplingTally& tally, std::vector<DonorStorage<D>>& store);
 
-// Step 1 for level l alone, each donor level d read at the fraction donor_a[d] of its last step
-// (interpolate_from_level; 1: its current state). Local time stepping calls it at the end of
-// each of level l's own steps, with dt that step.
+// Step 1 for level l alone, each donor level read as `donors` holds it (DonorStates: at a
+// fraction of its last step). Local time stepping calls it at the end of each of level l's own
+// steps, with dt that step.
 template <int D>
 void accumulate_and_create_level(std::vector<Level<D>>& levels, LevelLink<D>& link, std::size_t l,
-                                 double dt, const std::vector<double>& donor_a, double entry,
+                                 double dt, const DonorStates<D>& donors, double entry,
                                  const DonorRule& rule, std::uint64_t& next_id,
                                  CouplingTally& tally);
 
@@ -73,12 +91,12 @@ Vec<D> update_kinds(Level<D>& L, const LevelLink<D>& link, CouplingTally& tally)
 template <int D>
 std::size_t interpolate_buffers(std::vector<Level<D>>& levels,
                                 const std::vector<LevelLink<D>>& links, CouplingTally& tally,
-                                const DonorRule& rule);
+                                const DonorRule& rule, std::vector<DonorStorage<D>>& store);
 
 // Step 3 for level l alone, donors as in accumulate_and_create_level. Returns the number deleted.
 template <int D>
 std::size_t interpolate_buffers_level(std::vector<Level<D>>& levels, const LevelLink<D>& link,
                                       std::size_t l, CouplingTally& tally, const DonorRule& rule,
-                                      const std::vector<double>& donor_a);
+                                      const DonorStates<D>& donors);
 
 }  // namespace vrsph

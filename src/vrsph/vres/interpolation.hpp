@@ -102,11 +102,34 @@ InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D
 // once for all the points of the batch (for a = 1 the particle set's own arrays), and their
 // volumes m_j / rho_j (each point's support holds some 20 donors, and every donor serves several
 // points: one division per donor and batch instead of one per donor and point, the same bits).
+// With `lanes`, the state also holds the donors as columns for the Shepard sums in lanes
+// (ShepardColumns): a batch whose points take the Shepard average first (shepard_fill above 1)
+// sums them in fixed lanes, vectorised, instead of donor by donor.
+template <int D>
+struct ShepardColumns {
+  static constexpr std::size_t kPad = 8;  // entries past the last donor: far away, zero volume
+  std::vector<double> x[D];               // positions
+  std::vector<double> vol_fluid;          // V_j = m_j / rho_j of fluid donors, 0 for buffer donors
+  std::vector<double> vol_buffer;         // V_j of buffer donors, 0 for fluid donors
+  std::vector<double> rho;                // densities
+  std::vector<double> vel[D];             // velocities
+};
+
+// The arrays a DonorState fills, kept by its owner from one batch to the next: formed anew for
+// every batch, they were some 200 kB allocated and freed per level step, and the page faults of
+// the heap growing and shrinking cost more than the sums they served.
+template <int D>
+struct DonorStorage {
+  std::vector<Vec<D>> pos_a, vel_a;
+  std::vector<double> rho_a, vol;
+  ShepardColumns<D> columns;
+};
+
 template <int D>
 class DonorState {
  public:
   DonorState(const ParticleSet<D>& ps, const CellGrid<D>& grid, const WendlandC2<D>& kernel,
-             double a);
+             double a, DonorStorage<D>& store, bool lanes = false);
   DonorState(const DonorState&) = delete;
   DonorState& operator=(const DonorState&) = delete;
 
@@ -116,17 +139,27 @@ class DonorState {
   const Vec<D>* pos = nullptr;
   const Vec<D>* vel = nullptr;
   const double* rho = nullptr;
-  const double* vol = nullptr;  // m_j / rho_j
+  const double* vol = nullptr;                 // m_j / rho_j
+  const ShepardColumns<D>* columns = nullptr;  // the donors as columns; null without `lanes`
 
  private:
-  std::vector<Vec<D>> pos_a_, vel_a_;
-  std::vector<double> rho_a_, vol_;
+  void fill_columns(ShepardColumns<D>& c) const;
 };
 
-// interpolate_from_level from a donor state: the same values, bit for bit.
+// interpolate_from_level from a donor state: the same values, bit for bit, when the state holds no
+// columns; with them (and shepard_fill above 1) the Shepard sums run in lanes (interpolate_values).
+
 template <int D>
 InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>& donor,
                                             double cond_limit, double shepard_fill);
+
+// As interpolate_from_donor, except that with a donor state holding columns and shepard_fill above
+// 1 the Shepard average comes from the sums in lanes: the same values but for the order of the
+// sums (round-off), at a third of the cost. Where the fill reaches shepard_fill, the first-order
+// values of interpolate_from_donor.
+template <int D>
+InterpolatedState<D> interpolate_values(const Vec<D>& x, const DonorState<D>& donor,
+                                        double cond_limit, double shepard_fill);
 
 // The same for many points, in parallel (OpenMP, static schedule): out[i] for points[i]. out is
 // resized to points.size() (no allocation once it is large enough).

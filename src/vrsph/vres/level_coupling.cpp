@@ -233,10 +233,11 @@ CouplingTally LevelCoupling<D>::after_step(std::vector<Level<D>>& levels, double
   const Vec<D> p_before = opt_.conserve_momentum ? fluid_momentum(levels, mass) : Vec<D>{};
   std::size_t moved = 0;
   for (Level<D>& L : levels) moved += space_buffers(L, opt_.buffer_spacing);
-  accumulate_and_create(levels, links_, dt, entry_depth(), donor_rule(), next_id, tally);
+  accumulate_and_create(levels, links_, dt, entry_depth(), donor_rule(), next_id, tally,
+                        donor_store_);
   for (std::size_t l = 0; l < levels.size(); ++l) update_kinds(levels[l], links_[l], tally);
   if (changed_since_sort(moved, tally)) sort();
-  if (interpolate_buffers(levels, links_, tally, donor_rule()) > 0) sort();
+  if (interpolate_buffers(levels, links_, tally, donor_rule(), donor_store_) > 0) sort();
   if (opt_.conserve_momentum && fluid_changed(tally)) {
     const Vec<D> dp = fluid_momentum(levels, mass) - p_before;
     if (mass > 0.0) add_to_fluid_velocity(levels, dp * (-1.0 / mass));
@@ -286,14 +287,17 @@ CouplingTally LevelCoupling<D>::after_level_step(std::vector<Level<D>>& levels, 
   CouplingTally tally;
   if (!multi_level()) return tally;
   const std::size_t moved = space_buffers(levels[l], opt_.buffer_spacing);
-  accumulate_and_create_level(levels, links_[l], l, dt, donor_a, entry_depth(), donor_rule(),
+  // The other levels do not change in this level's coupling: one donor state each serves the
+  // mass points and the buffer values.
+  const DonorStates<D> donors(levels, l, donor_a, donor_rule(), donor_store_);
+  accumulate_and_create_level(levels, links_[l], l, dt, donors, entry_depth(), donor_rule(),
                               next_id, tally);
   // Only kind changes and deletions move fluid momentum here (created particles are buffer, and
   // buffer values touch buffer particles alone): update_kinds gives the jump from the particles
   // concerned, instead of the fluid momentum of every level summed before and after.
   const Vec<D> jump = update_kinds(levels[l], links_[l], tally);
   if (changed_since_sort(moved, tally)) sort();
-  if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donor_a) > 0) sort();
+  if (interpolate_buffers_level(levels, links_[l], l, tally, donor_rule(), donors) > 0) sort();
   if (opt_.conserve_momentum && norm2(jump) > 0.0) remove_impulse(levels, jump);
   return tally;
 }

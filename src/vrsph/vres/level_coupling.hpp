@@ -123,6 +123,7 @@ class LevelCoupling {
 
   std::vector<LevelLink<D>> links_;
   CouplingOptions opt_;
+  std::vector<DonorStorage<D>> donor_store_;  // the donor states' arrays, one set per level
 };
 
 }  // namespace vrsph
