@@ -7,8 +7,9 @@
 //    the Shepard fallback just beyond a face or a corner (3D: an edge), with values bounded
 //    by the donors';
 //  - buffer and wall particles of the donor set are ignored;
-//  - the Shepard sums in lanes (interpolate_values) agree with the sums donor by donor to
-//    round-off, fluid, buffer and wall donors alike, also at a fraction of the donors' step.
+//  - the Shepard sums in lanes (interpolate_values, shepard_field from columns) agree with the
+//    sums donor by donor to round-off, fluid, buffer and wall donors alike, also at a fraction of
+//    the donors' step.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -286,6 +287,20 @@ void check_lanes(int n) {
       near(q.rho, p.rho, kRho0);
       for (int k = 0; k < D; ++k) near(q.vel[k], p.vel[k], 1.0);
       EXPECT_EQ(q.corrected, p.corrected);
+    }
+    if (a == 1.0) {  // a field of the donors' fluid (shepard_field), in lanes and donor by donor
+      std::vector<double> f(d.ps.size());
+      for (std::size_t j = 0; j < f.size(); ++j) f[j] = d.ps.rho[j] / kRho0;
+      LaneColumns<D> fc, vc;
+      fill_field_columns(d.ps, f, fc);
+      fill_field_columns(d.ps, d.ps.vel, vc);
+      for (const Vec<D>& x : pts) {
+        near(shepard_field(x, d.grid, d.kernel, fc, -1.0),
+             shepard_field(x, d.ps, d.grid, d.kernel, f, -1.0), 1.0);
+        const Vec<D> v = shepard_field(x, d.grid, d.kernel, vc, Vec<D>{});
+        const Vec<D> w = shepard_field(x, d.ps, d.grid, d.kernel, d.ps.vel, Vec<D>{});
+        for (int k = 0; k < D; ++k) near(v[k], w[k], 1.0);
+      }
     }
     // The point beyond the face has fluid in reach, the last one none.
     EXPECT_GT(interpolate_values(pts[2], lanes, kVresCondLimit, 2.0).shepard, kVresShepardMin);

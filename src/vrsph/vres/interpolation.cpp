@@ -106,75 +106,22 @@ struct ShepardValueSums {
   }
 };
 
-// The same sums as ShepardValueSums, formed in kLanes fixed lanes from the donor columns
-// (DonorState::columns): the candidates of each row of the stencil in chunks of kLanes, candidate
-// j0 + l of a chunk in lane l, every candidate weighed (W set to 0 beyond the support or past the
-// row's end), and the lanes added in order at the end. No compaction and no branch, so the chunk
-// vectorises: donor by donor, listing the candidates within reach and summing them one after the
-// other, a buffer value cost some 550 cycles, 40% of a particle's whole force evaluation. The
-// order of the sums depends only on the grid, not on the threads.
-template <int D>
-struct ShepardLaneSums {
-  static constexpr int kLanes = static_cast<int>(ShepardColumns<D>::kPad);
-  double w[kLanes] = {};          // sum V_j W over fluid donors
-  double w_buffer[kLanes] = {};   // the same over buffer donors
-  double fw[D + 1][kLanes] = {};  // sum V_j f_j W, f = rho, vel_k
-
-  void add_row(const Vec<D>& x, const ShepardColumns<D>& col, const WendlandC2<D>& kernel,
-               std::uint32_t begin, std::uint32_t end) {
-    const double* cx[D];
-    const double* cv[D];
-    for (int k = 0; k < D; ++k) cx[k] = col.x[k].data(), cv[k] = col.vel[k].data();
-    const double *vf = col.vol_fluid.data(), *vb = col.vol_buffer.data(), *rho = col.rho.data();
-    const double support2 = kernel.support2;
-    for (std::size_t j0 = begin; j0 < end; j0 += kLanes) {
-      const int valid = static_cast<int>(end - j0);
-      // The chunk's columns from j0, so that each lane's load is the next element of one vector.
-      const double* px[D];
-      const double* pv[D];
-      for (int k = 0; k < D; ++k) px[k] = cx[k] + j0, pv[k] = cv[k] + j0;
-      const double *pf = vf + j0, *pb = vb + j0, *pr = rho + j0;
-      for (int l = 0; l < kLanes; ++l) {
-        double r2 = 0.0;
-        for (int k = 0; k < D; ++k) {
-          const double d = x[k] - px[k][l];
-          r2 += d * d;
-        }
-        const bool in = (r2 < support2) & (l < valid);
-        const double wr = kernel.w(std::sqrt(r2));  // finite for every candidate, then selected
-        const double wj = in ? wr : 0.0;
-        const double vw = pf[l] * wj;
-        w[l] += vw;
-        w_buffer[l] += pb[l] * wj;
-        fw[0][l] += vw * pr[l];
-        for (int k = 0; k < D; ++k) fw[k + 1][l] += vw * pv[k][l];
-      }
-    }
-  }
-};
-
 // The lane sums over the fluid group of x's stencil (cell c), into `out`'s Shepard sums and, where
 // there is fluid, its Shepard values.
 template <int D>
 void shepard_in_lanes(const Vec<D>& x, std::int64_t c, const DonorState<D>& dn,
                       InterpolatedState<D>& out) {
-  ShepardLaneSums<D> s;
+  LaneSums<D, D + 1, true> s;
   dn.grid.for_each_run(c, Group::fluid, [&](std::uint32_t begin, std::uint32_t end) {
     s.add_row(x, *dn.columns, dn.kernel, begin, end);
   });
-  constexpr int L = ShepardLaneSums<D>::kLanes;
-  double sw = 0.0, sb = 0.0, sf[D + 1] = {};
-  for (int l = 0; l < L; ++l) {
-    sw += s.w[l];
-    sb += s.w_buffer[l];
-    for (int q = 0; q <= D; ++q) sf[q] += s.fw[q][l];
-  }
-  out.shepard = sw;
-  out.shepard_buffer = sb;
-  if (!(sw >= kVresShepardMin)) return;
-  const double inv_shep = 1.0 / sw;
-  out.rho = sf[0] * inv_shep;
-  for (int k = 0; k < D; ++k) out.vel[k] = sf[k + 1] * inv_shep;
+  const auto t = s.totals();
+  out.shepard = t.w;
+  out.shepard_buffer = t.w_buffer;
+  if (!(t.w >= kVresShepardMin)) return;
+  const double inv_shep = 1.0 / t.w;
+  out.rho = t.fw[0] * inv_shep;
+  for (int k = 0; k < D; ++k) out.vel[k] = t.fw[k + 1] * inv_shep;
 }
 
 // The sums over the fluid donors in reach of x (c: its stencil cell), and the fields of `out` they
@@ -303,22 +250,15 @@ DonorState<D>::DonorState(const ParticleSet<D>& p, const CellGrid<D>& g, const W
 
 template <int D>
 void DonorState<D>::fill_columns(ShepardColumns<D>& c) const {
-  const std::size_t n = ps.size(), padded = n + ShepardColumns<D>::kPad;
-  auto pad = [&](std::vector<double>& col, double value) {
-    col.resize(padded);
-    std::fill(col.begin() + static_cast<std::ptrdiff_t>(n), col.end(), value);
-  };
-  for (int k = 0; k < D; ++k) pad(c.x[k], 1e10), pad(c.vel[k], 0.0);
-  pad(c.vol_fluid, 0.0);
-  pad(c.vol_buffer, 0.0);
-  pad(c.rho, 0.0);
+  const std::size_t n = ps.size();
+  c.size_for(n, D + 1, true);
   exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t jj) {
     const auto j = static_cast<std::size_t>(jj);
-    for (int k = 0; k < D; ++k) c.x[k][j] = pos[j][k], c.vel[k][j] = vel[j][k];
+    for (int k = 0; k < D; ++k) c.x[k][j] = pos[j][k], c.value[k + 1][j] = vel[j][k];
     const bool fluid = ps.kind[j] == Kind::fluid;
     c.vol_fluid[j] = fluid ? vol[j] : 0.0;
     c.vol_buffer[j] = fluid ? 0.0 : vol[j];
-    c.rho[j] = rho[j];
+    c.value[0][j] = rho[j];
   });
 }
 
@@ -347,6 +287,46 @@ T shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGrid<D>
                     sfw += field[j] * vw;
                   });
   return sw >= kVresShepardMin ? sfw * (1.0 / sw) : fallback;
+}
+
+template <int D, class T>
+void fill_field_columns(const ParticleSet<D>& donors, const std::vector<T>& field,
+                        LaneColumns<D>& cols) {
+  constexpr int K = kComponents<D, T>;
+  const std::size_t n = donors.size();
+  cols.size_for(n, K, false);
+  exec::for_each(static_cast<std::int64_t>(n), [&](std::int64_t jj) {
+    const auto j = static_cast<std::size_t>(jj);
+    for (int k = 0; k < D; ++k) cols.x[k][j] = donors.pos[j][k];
+    cols.vol_fluid[j] = donors.kind[j] == Kind::fluid ? donors.mass_of(j) / donors.rho[j] : 0.0;
+    if constexpr (K == 1) {
+      cols.value[0][j] = field[j];
+    } else {
+      for (int k = 0; k < K; ++k) cols.value[k][j] = field[j][k];
+    }
+  });
+}
+
+template <int D, class T>
+T shepard_field(const Vec<D>& x, const CellGrid<D>& grid, const WendlandC2<D>& kernel,
+                const LaneColumns<D>& cols, T fallback) {
+  constexpr int K = kComponents<D, T>;
+  std::int64_t c = 0;
+  if (cols.vol_fluid.size() <= LaneColumns<D>::kPad || !grid.stencil_cell(x, c)) return fallback;
+  LaneSums<D, K, false> s;
+  grid.for_each_run(c, Group::fluid, [&](std::uint32_t begin, std::uint32_t end) {
+    s.add_row(x, cols, kernel, begin, end);
+  });
+  const auto t = s.totals();
+  if (!(t.w >= kVresShepardMin)) return fallback;
+  const double inv = 1.0 / t.w;
+  if constexpr (K == 1) {
+    return t.fw[0] * inv;
+  } else {
+    T v;
+    for (int k = 0; k < K; ++k) v[k] = t.fw[k] * inv;
+    return v;
+  }
 }
 
 template <int D>
@@ -392,5 +372,22 @@ template Vec<2> shepard_field<2, Vec<2>>(const Vec<2>&, const ParticleSet<2>&, c
                                          const WendlandC2<2>&, const std::vector<Vec<2>>&, Vec<2>);
 template Vec<3> shepard_field<3, Vec<3>>(const Vec<3>&, const ParticleSet<3>&, const CellGrid<3>&,
                                          const WendlandC2<3>&, const std::vector<Vec<3>>&, Vec<3>);
+
+template void fill_field_columns<2, double>(const ParticleSet<2>&, const std::vector<double>&,
+                                            LaneColumns<2>&);
+template double shepard_field<2, double>(const Vec<2>&, const CellGrid<2>&, const WendlandC2<2>&,
+                                         const LaneColumns<2>&, double);
+template void fill_field_columns<3, double>(const ParticleSet<3>&, const std::vector<double>&,
+                                            LaneColumns<3>&);
+template double shepard_field<3, double>(const Vec<3>&, const CellGrid<3>&, const WendlandC2<3>&,
+                                         const LaneColumns<3>&, double);
+template void fill_field_columns<2, Vec<2>>(const ParticleSet<2>&, const std::vector<Vec<2>>&,
+                                            LaneColumns<2>&);
+template Vec<2> shepard_field<2, Vec<2>>(const Vec<2>&, const CellGrid<2>&, const WendlandC2<2>&,
+                                         const LaneColumns<2>&, Vec<2>);
+template void fill_field_columns<3, Vec<3>>(const ParticleSet<3>&, const std::vector<Vec<3>>&,
+                                            LaneColumns<3>&);
+template Vec<3> shepard_field<3, Vec<3>>(const Vec<3>&, const CellGrid<3>&, const WendlandC2<3>&,
+                                         const LaneColumns<3>&, Vec<3>);
 
 }  // namespace vrsph

@@ -37,6 +37,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -44,6 +45,7 @@
 #include "vrsph/core/vec.hpp"
 #include "vrsph/particles/cell_grid.hpp"
 #include "vrsph/particles/particles.hpp"
+#include "vrsph/vres/shepard_lanes.hpp"
 
 namespace vrsph {
 
@@ -105,15 +107,10 @@ InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D
 // With `lanes`, the state also holds the donors as columns for the Shepard sums in lanes
 // (ShepardColumns): a batch whose points take the Shepard average first (shepard_fill above 1)
 // sums them in fixed lanes, vectorised, instead of donor by donor.
+// The donors as columns for the Shepard sums in lanes (vres/shepard_lanes.hpp): value[0] = rho,
+// value[1 + k] = vel_k.
 template <int D>
-struct ShepardColumns {
-  static constexpr std::size_t kPad = 8;  // entries past the last donor: far away, zero volume
-  std::vector<double> x[D];               // positions
-  std::vector<double> vol_fluid;          // V_j = m_j / rho_j of fluid donors, 0 for buffer donors
-  std::vector<double> vol_buffer;         // V_j of buffer donors, 0 for fluid donors
-  std::vector<double> rho;                // densities
-  std::vector<double> vel[D];             // velocities
-};
+using ShepardColumns = LaneColumns<D>;
 
 // The arrays a DonorState fills, kept by its owner from one batch to the next: formed anew for
 // every batch, they were some 200 kB allocated and freed per level step, and the page faults of
@@ -177,6 +174,22 @@ void interpolate_from_level(const std::vector<Vec<D>>& points, const ParticleSet
 template <int D, class T>
 T shepard_field(const Vec<D>& x, const ParticleSet<D>& donors, const CellGrid<D>& grid,
                 const WendlandC2<D>& kernel, const std::vector<T>& field, T fallback);
+
+// The number of components of a field of type T (double or Vec<D>).
+template <int D, class T>
+inline constexpr int kComponents = std::is_same_v<T, double> ? 1 : D;
+
+// The donor level's fluid and a field of it as columns for shepard_field in lanes: x, V_j of
+// fluid donors (0 for buffer donors), the field's components.
+template <int D, class T>
+void fill_field_columns(const ParticleSet<D>& donors, const std::vector<T>& field,
+                        LaneColumns<D>& cols);
+
+// shepard_field from those columns, summed in lanes: the same average but for the order of the
+// sums (round-off), a third of the cost.
+template <int D, class T>
+T shepard_field(const Vec<D>& x, const CellGrid<D>& grid, const WendlandC2<D>& kernel,
+                const LaneColumns<D>& cols, T fallback);
 
 // Small dense N x N LU factorisation with partial pivoting (Golub & Van Loan, algorithm 3.4.1):
 // P A = L U with L unit lower triangular, both stored in lu. A pivot below 1e-14 ||A||inf marks

@@ -68,6 +68,18 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
   Level<D>& L = levels[l];
   const LevelRegion<D>& region = links_[l].region;
   std::vector<T>& own = L.sf.*field;
+  // The donors of the buffers (the parent and the children) as columns for the sums in lanes.
+  field_cols_.resize(levels.size());
+  for (std::size_t d = 0; d < levels.size(); ++d) {
+    const Level<D>& dl = levels[d];
+    const bool donor = static_cast<int>(d) == region.parent ||
+                       std::any_of(region.children.begin(), region.children.end(),
+                                   [d](const auto& c) { return c.level == static_cast<int>(d); });
+    if (donor && (dl.sf.*field).size() == dl.ps.size())
+      fill_field_columns(dl.ps, dl.sf.*field, field_cols_[d]);
+    else
+      field_cols_[d].vol_fluid.clear();  // not a donor of l, or no such field yet
+  }
   exec::for_each_dynamic(static_cast<std::int64_t>(L.ps.size()), 64, [&](std::int64_t ii) {
     const auto i = static_cast<std::size_t>(ii);
     if (L.ps.kind[i] != Kind::buffer) return;
@@ -79,9 +91,9 @@ void LevelCoupling<D>::exchange_buffer_field(std::vector<Level<D>>& levels, std:
       if (inner && norm2(own[i]) == 0.0) return;  // kink_normal keeps a zero own normal
     }
     const Level<D>& dl = levels[static_cast<std::size_t>(z.donor)];
-    const std::vector<T>& donor_field = dl.sf.*field;
-    if (donor_field.size() != dl.ps.size()) return;  // the donor holds no such field yet
-    T v = shepard_field<D, T>(L.ps.pos[i], dl.ps, dl.grid, dl.prm.kernel, donor_field, T{});
+    const LaneColumns<D>& cols = field_cols_[static_cast<std::size_t>(z.donor)];
+    if (cols.vol_fluid.empty()) return;  // the donor holds no such field yet
+    T v = shepard_field<D, T>(L.ps.pos[i], dl.grid, dl.prm.kernel, cols, T{});
     if constexpr (std::is_same_v<T, Vec<D>>) {
       const double m = norm(v);
       v = m >= 0.5 ? v * (1.0 / m) : Vec<D>{};

@@ -123,7 +123,8 @@ class LevelCoupling {
 
   std::vector<LevelLink<D>> links_;
   CouplingOptions opt_;
-  std::vector<DonorStorage<D>> donor_store_;  // the donor states' arrays, one set per level
+  std::vector<DonorStorage<D>> donor_store_;        // the donor states' arrays, one set per level
+  mutable std::vector<LaneColumns<D>> field_cols_;  // exchange_buffer_field's donors, per level
 };
 
 }  // namespace vrsph
