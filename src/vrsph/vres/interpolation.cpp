@@ -106,6 +106,21 @@ struct ShepardValueSums {
   }
 };
 
+// The walls' share of the fill at x (c: its stencil cell): out.shepard_walls += sum_j V_j W over
+// the donor level's wall particles within reach.
+template <int D>
+void add_wall_fill(const Vec<D>& x, std::int64_t c, const DonorState<D>& dn,
+                   InterpolatedState<D>& out) {
+  const ParticleSet<D>& donors = dn.ps;
+  const WendlandC2<D>& kernel = dn.kernel;
+  auto now = [&](std::uint32_t j) { return donors.pos[j]; };
+  for_each_within(dn.grid, c, Group::wall, x, kernel.support2, now,
+                  [&](std::uint32_t j, const Vec<D>&, double r2) {
+                    const double v = donors.mass_of(j) / donors.rho[j];
+                    out.shepard_walls += v * kernel.w(std::sqrt(r2));
+                  });
+}
+
 // The lane sums over the fluid group of x's stencil (cell c), into `out`'s Shepard sums and, where
 // there is fluid, its Shepard values.
 template <int D>
@@ -159,16 +174,8 @@ template <int D>
                                                               double shepard_fill) {
   InterpolatedState<D> out;
   std::int64_t c = 0;
-  const ParticleSet<D>& donors = dn.ps;
-  const WendlandC2<D>& kernel = dn.kernel;
-  if (donors.size() == 0 || !dn.grid.stencil_cell(x, c)) return out;
-  // The walls' share of the fill, independent of the fluid sums below.
-  auto now = [&](std::uint32_t j) { return donors.pos[j]; };
-  for_each_within(dn.grid, c, Group::wall, x, kernel.support2, now,
-                  [&](std::uint32_t j, const Vec<D>&, double r2) {
-                    const double v = donors.mass_of(j) / donors.rho[j];
-                    out.shepard_walls += v * kernel.w(std::sqrt(r2));
-                  });
+  if (dn.ps.size() == 0 || !dn.grid.stencil_cell(x, c)) return out;
+  add_wall_fill(x, c, dn, out);  // independent of the fluid sums below
   // Above a fill of 1 (the fluid's inside) nearly every point takes the Shepard average, so its
   // sums come first and the first-order system is summed only where the fill reaches
   // shepard_fill (cond stays 0 where it is not formed). The shipped VR drop (2: everywhere)
@@ -204,12 +211,7 @@ InterpolatedState<D> interpolate_values(const Vec<D>& x, const DonorState<D>& dn
   std::int64_t c = 0;
   const ParticleSet<D>& donors = dn.ps;
   if (donors.size() == 0 || !dn.grid.stencil_cell(x, c)) return out;
-  auto now = [&](std::uint32_t j) { return donors.pos[j]; };
-  for_each_within(dn.grid, c, Group::wall, x, dn.kernel.support2, now,
-                  [&](std::uint32_t j, const Vec<D>&, double r2) {
-                    const double v = donors.mass_of(j) / donors.rho[j];
-                    out.shepard_walls += v * dn.kernel.w(std::sqrt(r2));
-                  });
+  add_wall_fill(x, c, dn, out);
   shepard_in_lanes(x, c, dn, out);
   if (!(out.shepard >= kVresShepardMin) || donor_fill(out) < shepard_fill) return out;
   return interpolate_from_donor(x, dn, cond_limit, shepard_fill);  // the fill reaches shepard_fill

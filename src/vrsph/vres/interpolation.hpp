@@ -99,14 +99,6 @@ InterpolatedState<D> interpolate_from_level(const Vec<D>& x, const ParticleSet<D
                                             double cond_limit = kVresCondLimit, double a = 1.0,
                                             double shepard_fill = 0.0);
 
-// A donor level as a batch of interpolations reads it: the positions, velocities and densities of
-// its particles at the fraction a of its last step (as interpolate_from_level forms them), formed
-// once for all the points of the batch (for a = 1 the particle set's own arrays), and their
-// volumes m_j / rho_j (each point's support holds some 20 donors, and every donor serves several
-// points: one division per donor and batch instead of one per donor and point, the same bits).
-// With `lanes`, the state also holds the donors as columns for the Shepard sums in lanes
-// (ShepardColumns): a batch whose points take the Shepard average first (shepard_fill above 1)
-// sums them in fixed lanes, vectorised, instead of donor by donor.
 // The donors as columns for the Shepard sums in lanes (vres/shepard_lanes.hpp): value[0] = rho,
 // value[1 + k] = vel_k.
 template <int D>
@@ -122,6 +114,14 @@ struct DonorStorage {
   ShepardColumns<D> columns;
 };
 
+// A donor level as a batch of interpolations reads it: the positions, velocities and densities of
+// its particles at the fraction a of its last step (as interpolate_from_level forms them), formed
+// once for all the points of the batch (for a = 1 the particle set's own arrays), and their
+// volumes m_j / rho_j (each point's support holds some 20 donors, and every donor serves several
+// points: one division per donor and batch instead of one per donor and point, the same bits).
+// With `lanes`, the state also holds the donors as columns (ShepardColumns): a batch whose points
+// take the Shepard average first (shepard_fill above 1) sums them in fixed lanes, vectorised,
+// instead of donor by donor (interpolate_values).
 template <int D>
 class DonorState {
  public:
@@ -143,9 +143,8 @@ class DonorState {
   void fill_columns(ShepardColumns<D>& c) const;
 };
 
-// interpolate_from_level from a donor state: the same values, bit for bit, when the state holds no
-// columns; with them (and shepard_fill above 1) the Shepard sums run in lanes (interpolate_values).
-
+// interpolate_from_level from a donor state, donor by donor whether or not the state holds columns
+// (the reference the sums in lanes are tested against).
 template <int D>
 InterpolatedState<D> interpolate_from_donor(const Vec<D>& x, const DonorState<D>& donor,
                                             double cond_limit, double shepard_fill);
